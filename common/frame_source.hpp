@@ -1,0 +1,38 @@
+// Frames from an LCM log or a sequence directory, for the offline tools
+// (stairs-eval, stairs-viewer --render).
+#pragma once
+
+#include "common/types.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace stairs {
+
+struct SourceFrame {
+  DepthImage image;
+  std::optional<GroundTruthFrame> truth;
+};
+
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  // Next frame; false at the end. Throws std::runtime_error naming the file on
+  // a truncated log or a broken sequence directory.
+  virtual bool next(SourceFrame& frame) = 0;
+  // The stair's ground truth (flights), once known.
+  virtual const std::optional<GroundTruth>& ground_truth() const = 0;
+  virtual double progress() const = 0;  // 0..1
+  virtual size_t size_hint() const = 0;  // frames, 0 if unknown
+  // Depth messages skipped because they failed validation, with the last reason.
+  virtual size_t invalid() const { return 0; }
+  virtual std::string last_error() const { return {}; }
+};
+
+// A directory is read as a sequence, a file as an LCM log.
+std::unique_ptr<FrameSource> open_frame_source(const std::string& path,
+                                               const std::string& depth_channel = "STAIRS_DEPTH",
+                                               const std::string& truth_channel = "STAIRS_GROUND_TRUTH");
+
+}  // namespace stairs

@@ -1,0 +1,153 @@
+#include "common/json_io.hpp"
+
+#include "common/file_util.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace stairs {
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void fail(const std::string& what, const std::string& msg) {
+  throw std::runtime_error(what + ": " + msg);
+}
+
+double number(const json& j, const char* key, const std::string& what) {
+  auto it = j.find(key);
+  if (it == j.end()) fail(what, std::string("missing key '") + key + "'");
+  if (!it->is_number()) fail(what, std::string("'") + key + "' is not a number");
+  const double v = it->get<double>();
+  if (!std::isfinite(v)) fail(what, std::string("'") + key + "' is not finite");
+  return v;
+}
+
+std::optional<double> optional_number(const json& j, const char* key, const std::string& what) {
+  auto it = j.find(key);
+  if (it == j.end() || it->is_null()) return std::nullopt;
+  return number(j, key, what);
+}
+
+json optional_to_json(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
+
+}  // namespace
+
+json to_json(const Intrinsics& K, double depth_scale) {
+  return {{"width", K.width}, {"height", K.height}, {"fx", K.fx}, {"fy", K.fy},
+          {"cx", K.cx},       {"cy", K.cy},         {"depth_scale", depth_scale}};
+}
+
+json step_to_json(const Step& s) {
+  return {{"riser_height_m", optional_to_json(s.riser_height_m)},
+          {"tread_depth_m", optional_to_json(s.tread_depth_m)},
+          {"width_m", s.width_m},
+          {"landing", s.landing},
+          {"nosing_m", {s.nosing_m.x(), s.nosing_m.z()}}};
+}
+
+json to_json(const GroundTruth& gt) {
+  json flights = json::array();
+  for (const Flight& f : gt.flights) {
+    json steps = json::array();
+    for (const Step& s : f.steps) steps.push_back(step_to_json(s));
+    json jf = {{"steps", steps}, {"width_m", f.width_m}};
+    if (!f.steps.empty() && f.steps.back().tread_depth_m)
+      jf["top_landing_depth_m"] = *f.steps.back().tread_depth_m;
+    flights.push_back(jf);
+  }
+  json frames = json::array();
+  for (const GroundTruthFrame& fr : gt.frames) {
+    const Eigen::Quaterniond& q = fr.orientation;
+    frames.push_back({{"timestamp", fr.timestamp},
+                      {"pitch_deg", fr.pitch_deg},
+                      {"roll_deg", fr.roll_deg},
+                      {"height_m", fr.height_m},
+                      {"distance_m", optional_to_json(fr.distance_m)},
+                      {"position_m", {fr.position_m.x(), fr.position_m.y(), fr.position_m.z()}},
+                      {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}},
+                      {"visible_steps", fr.visible_steps}});
+  }
+  json out = {{"flights", flights}, {"frames", frames}};
+  if (!gt.scene.empty()) out["scene"] = gt.scene;
+  return out;
+}
+
+void intrinsics_from_json(const json& j, const std::string& what, Intrinsics& K, double& depth_scale) {
+  if (!j.is_object()) fail(what, "not a JSON object");
+  K.width = static_cast<int>(number(j, "width", what));
+  K.height = static_cast<int>(number(j, "height", what));
+  K.fx = number(j, "fx", what);
+  K.fy = number(j, "fy", what);
+  K.cx = number(j, "cx", what);
+  K.cy = number(j, "cy", what);
+  depth_scale = number(j, "depth_scale", what);
+  if (K.width <= 0 || K.height <= 0 || K.width > 4096 || K.height > 4096)
+    fail(what, "width/height out of range 1..4096");
+  if (K.fx <= 0 || K.fy <= 0) fail(what, "fx/fy must be positive");
+  if (depth_scale <= 0) fail(what, "depth_scale must be positive");
+}
+
+GroundTruth ground_truth_from_json(const json& j, const std::string& what) {
+  if (!j.is_object()) fail(what, "not a JSON object");
+  GroundTruth gt;
+  if (auto it = j.find("scene"); it != j.end() && it->is_string()) gt.scene = it->get<std::string>();
+  auto flights = j.find("flights");
+  if (flights == j.end() || !flights->is_array()) fail(what, "missing array 'flights'");
+  for (const json& jf : *flights) {
+    Flight f;
+    if (auto w = optional_number(jf, "width_m", what)) f.width_m = *w;
+    auto steps = jf.find("steps");
+    if (steps == jf.end() || !steps->is_array()) fail(what, "flight without array 'steps'");
+    for (const json& js : *steps) {
+      Step s;
+      s.riser_height_m = optional_number(js, "riser_height_m", what);
+      s.tread_depth_m = optional_number(js, "tread_depth_m", what);
+      s.landing = js.value("landing", false);
+      if (auto w = optional_number(js, "width_m", what)) s.width_m = *w;
+      auto nos = js.find("nosing_m");
+      if (nos != js.end() && nos->is_array() && nos->size() == 2)
+        s.nosing_m = {(*nos)[0].get<double>(), 0.0, (*nos)[1].get<double>()};
+      f.steps.push_back(s);
+    }
+    gt.flights.push_back(std::move(f));
+  }
+  if (auto frames = j.find("frames"); frames != j.end()) {
+    if (!frames->is_array()) fail(what, "'frames' is not an array");
+    for (const json& jf : *frames) {
+      GroundTruthFrame fr;
+      fr.timestamp = number(jf, "timestamp", what);
+      fr.pitch_deg = number(jf, "pitch_deg", what);
+      fr.roll_deg = number(jf, "roll_deg", what);
+      fr.height_m = number(jf, "height_m", what);
+      fr.distance_m = optional_number(jf, "distance_m", what);
+      if (auto p = jf.find("position_m"); p != jf.end() && p->is_array() && p->size() == 3)
+        fr.position_m = {(*p)[0].get<double>(), (*p)[1].get<double>(), (*p)[2].get<double>()};
+      if (auto q = jf.find("quaternion_wxyz"); q != jf.end() && q->is_array() && q->size() == 4)
+        fr.orientation = Eigen::Quaterniond((*q)[0].get<double>(), (*q)[1].get<double>(),
+                                            (*q)[2].get<double>(), (*q)[3].get<double>());
+      if (auto v = jf.find("visible_steps"); v != jf.end() && v->is_array())
+        fr.visible_steps = v->get<std::vector<int>>();
+      gt.frames.push_back(std::move(fr));
+    }
+  }
+  return gt;
+}
+
+json read_json_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  try {
+    return json::parse(in);
+  } catch (const json::exception& e) {
+    throw std::runtime_error(path + ": bad JSON: " + e.what());
+  }
+}
+
+void write_json_file(const std::string& path, const json& j) {
+  write_file_atomically(path, j.dump(1) + "\n");
+}
+
+}  // namespace stairs

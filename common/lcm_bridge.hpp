@@ -1,0 +1,54 @@
+// Conversion between the core types (common/types.hpp) and the LCM messages,
+// with validation. Every daemon decodes through decode_message(), which
+// enforces the size caps documented in lcmtypes/*.lcm before any allocation.
+#pragma once
+
+#include "common/types.hpp"
+
+#include <stairs/daemon_status_t.hpp>
+#include <stairs/depth_frame_t.hpp>
+#include <stairs/ground_truth_t.hpp>
+#include <stairs/stair_model_t.hpp>
+#include <stairs/stair_observation_t.hpp>
+
+#include <string>
+
+namespace stairs {
+
+// Decodes a message of type T from a received buffer. Rejects a buffer larger
+// than the type's cap, a wrong type (fingerprint), a truncated or corrupt
+// encoding, and (for depth frames) declared array sizes larger than the buffer.
+// Never throws; returns false with a one-line reason.
+template <class T>
+bool decode_message(const void* data, size_t size, T& msg, std::string& error);
+
+// Largest encoded size accepted for a type, bytes.
+template <class T>
+size_t max_message_bytes();
+
+// --- depth frames ---------------------------------------------------------
+// zlib_level 0 = raw, 1..9 = zlib.
+depth_frame_t to_lcm(const DepthImage& img, int zlib_level, const std::string& frame_id = "camera");
+// Validates sizes, caps, encoding, intrinsics, NaN/inf, zlib; rejects a frame
+// whose depth is zero everywhere.
+bool from_lcm(const depth_frame_t& msg, DepthImage& img, std::string& error);
+
+// --- observations and models ----------------------------------------------
+stair_observation_t to_lcm(const Observation& obs, int64_t utime);
+bool from_lcm(const stair_observation_t& msg, Observation& obs, std::string& error);
+
+stair_model_t to_lcm(const StairModel& model, int64_t utime, int64_t source_utime, int32_t source_seq);
+bool from_lcm(const stair_model_t& msg, StairModel& model, std::string& error);
+
+// --- ground truth -----------------------------------------------------------
+ground_truth_t to_lcm(const GroundTruth& gt, const GroundTruthFrame& frame, int64_t utime, int32_t seq);
+// Fills gt.scene, gt.flights and frame.
+bool from_lcm(const ground_truth_t& msg, GroundTruth& gt, GroundTruthFrame& frame, std::string& error);
+
+// Step and flight conversions used by the above (and by tools that build messages).
+step_t to_lcm(const Step& s);
+Step from_lcm(const step_t& s);
+plane_t to_lcm(const Plane& p);
+Plane from_lcm(const plane_t& p);
+
+}  // namespace stairs

@@ -1,0 +1,100 @@
+#include "common/sequence.hpp"
+
+#include "common/file_util.hpp"
+#include "common/json_io.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <cinttypes>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace stairs {
+namespace fs = std::filesystem;
+
+SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
+  if (!fs::is_directory(dir)) throw std::runtime_error(dir + ": not a directory");
+  const std::string camera = (fs::path(dir) / "camera.json").string();
+  if (!fs::exists(camera)) throw std::runtime_error(camera + ": missing");
+  intrinsics_from_json(read_json_file(camera), camera, K_, depth_scale_);
+
+  const std::string index = (fs::path(dir) / "depth.txt").string();
+  std::ifstream in(index);
+  if (!in) throw std::runtime_error(index + ": missing or unreadable");
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream ls(line);
+    Entry e;
+    if (!(ls >> e.timestamp >> e.path))
+      throw std::runtime_error(index + ":" + std::to_string(line_no) +
+                               ": expected '<timestamp_s> <path.png>'");
+    entries_.push_back(e);
+  }
+  if (entries_.empty()) throw std::runtime_error(index + ": lists no frames");
+
+  const std::string gt = (fs::path(dir) / "groundtruth.json").string();
+  if (fs::exists(gt)) ground_truth_ = ground_truth_from_json(read_json_file(gt), gt);
+}
+
+DepthImage SequenceReader::read(size_t i) const {
+  const Entry& e = entries_.at(i);
+  const std::string path = (fs::path(dir_) / e.path).string();
+  if (!fs::exists(path)) throw std::runtime_error(path + ": missing (listed in depth.txt)");
+  cv::Mat m = cv::imread(path, cv::IMREAD_ANYDEPTH | cv::IMREAD_GRAYSCALE);
+  if (m.empty()) throw std::runtime_error(path + ": not a readable image");
+  if (m.depth() != CV_16U)
+    throw std::runtime_error(path + ": depth PNG must be 16-bit unsigned, found " +
+                             (m.depth() == CV_8U ? std::string("8-bit") : std::string("another type")));
+  if (m.cols != K_.width || m.rows != K_.height)
+    throw std::runtime_error(path + ": size " + std::to_string(m.cols) + "x" + std::to_string(m.rows) +
+                             " does not match camera.json " + std::to_string(K_.width) + "x" +
+                             std::to_string(K_.height));
+  DepthImage img;
+  img.K = K_;
+  img.depth_scale = depth_scale_;
+  img.depth.resize(static_cast<size_t>(K_.width) * K_.height);
+  for (int v = 0; v < m.rows; ++v)
+    std::memcpy(img.depth.data() + static_cast<size_t>(v) * K_.width, m.ptr<uint16_t>(v),
+                sizeof(uint16_t) * K_.width);
+  img.utime = static_cast<int64_t>(e.timestamp * 1e6 + (e.timestamp >= 0 ? 0.5 : -0.5));
+  img.seq = static_cast<int32_t>(i);
+  return img;
+}
+
+SequenceWriter::SequenceWriter(const std::string& dir, const Intrinsics& K, double depth_scale)
+    : dir_(dir), K_(K), depth_scale_(depth_scale) {
+  make_directories((fs::path(dir) / "depth").string());
+  // A stale index from an earlier run would make this one look complete early.
+  fs::remove(fs::path(dir) / "depth.txt");
+  index_ = "# depth maps: uint16 PNG, depth along the optical axis, 0 = no measurement\n"
+           "# timestamp filename\n";
+}
+
+void SequenceWriter::write(const DepthImage& img, double timestamp_s) {
+  if (img.K.width != K_.width || img.K.height != K_.height)
+    throw std::runtime_error(dir_ + ": frame size differs from the sequence's camera");
+  char name[32];
+  std::snprintf(name, sizeof(name), "depth/%06zu.png", count_++);
+  const cv::Mat m = cv::Mat(K_.height, K_.width, CV_16UC1, const_cast<uint16_t*>(img.depth.data()));
+  const std::string path = (fs::path(dir_) / name).string();
+  if (!cv::imwrite(path, m, {cv::IMWRITE_PNG_COMPRESSION, 1}))
+    throw std::runtime_error(path + ": cannot write PNG");
+  char line[96];
+  std::snprintf(line, sizeof(line), "%.6f %s\n", timestamp_s, name);
+  index_ += line;
+}
+
+void SequenceWriter::finish(const std::optional<GroundTruth>& ground_truth) {
+  write_json_file((fs::path(dir_) / "camera.json").string(), to_json(K_, depth_scale_));
+  if (ground_truth) write_json_file((fs::path(dir_) / "groundtruth.json").string(), to_json(*ground_truth));
+  write_file_atomically((fs::path(dir_) / "depth.txt").string(), index_);
+}
+
+}  // namespace stairs

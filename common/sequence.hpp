@@ -1,0 +1,60 @@
+// Sequence directories (DESIGN.md): camera.json, depth.txt, depth/*.png (16-bit),
+// optional groundtruth.json. Input of every offline tool, output of stairs-sim.
+#pragma once
+
+#include "common/types.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace stairs {
+
+class SequenceReader {
+ public:
+  // Reads camera.json, depth.txt and groundtruth.json (if present). Throws
+  // std::runtime_error "FILE: reason" on a missing or malformed file.
+  explicit SequenceReader(const std::string& dir);
+
+  size_t size() const { return entries_.size(); }
+  const Intrinsics& intrinsics() const { return K_; }
+  double depth_scale() const { return depth_scale_; }
+  double timestamp(size_t i) const { return entries_.at(i).timestamp; }
+  const std::string& depth_path(size_t i) const { return entries_.at(i).path; }
+  const std::optional<GroundTruth>& ground_truth() const { return ground_truth_; }
+
+  // Loads frame i; utime = timestamp in us, seq = i. Throws "FILE: reason" on a
+  // missing, unreadable, 8-bit or wrongly sized PNG.
+  DepthImage read(size_t i) const;
+
+ private:
+  struct Entry {
+    double timestamp;
+    std::string path;
+  };
+  std::string dir_;
+  Intrinsics K_;
+  double depth_scale_ = 0.001;
+  std::vector<Entry> entries_;
+  std::optional<GroundTruth> ground_truth_;
+};
+
+class SequenceWriter {
+ public:
+  // Creates dir/ and dir/depth/. camera.json and depth.txt are written by
+  // finish(), so an interrupted run leaves a directory no reader accepts.
+  SequenceWriter(const std::string& dir, const Intrinsics& K, double depth_scale);
+
+  // Writes depth/NNNNNN.png for the image (which must match K).
+  void write(const DepthImage& img, double timestamp_s);
+  void finish(const std::optional<GroundTruth>& ground_truth = std::nullopt);
+
+ private:
+  std::string dir_;
+  Intrinsics K_;
+  double depth_scale_;
+  std::string index_;
+  size_t count_ = 0;
+};
+
+}  // namespace stairs

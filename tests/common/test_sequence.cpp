@@ -1,0 +1,166 @@
+// Sequence directories: round trip, and a clear error for each broken input.
+#include "common/json_io.hpp"
+#include "common/sequence.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace stairs;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path temp_dir(const std::string& name) {
+  fs::path p = fs::temp_directory_path() / ("stairs_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  return p;
+}
+
+DepthImage image(int w, int h, uint16_t base) {
+  DepthImage img;
+  img.K = {w, h, 100, 100, (w - 1) / 2.0, (h - 1) / 2.0};
+  img.depth.resize(static_cast<size_t>(w) * h);
+  for (size_t i = 0; i < img.depth.size(); ++i) img.depth[i] = static_cast<uint16_t>(base + i);
+  return img;
+}
+
+GroundTruth truth() {
+  GroundTruth gt;
+  gt.scene = "unit";
+  Flight f;
+  f.width_m = 1.2;
+  for (int i = 0; i < 3; ++i) {
+    Step s;
+    s.riser_height_m = 0.18;
+    s.tread_depth_m = i == 2 ? 1.5 : 0.25;
+    s.landing = i == 2;
+    s.nosing_m = {0.25 * i, 0, 0.18 * (i + 1)};
+    f.steps.push_back(s);
+  }
+  gt.flights = {f};
+  for (int i = 0; i < 2; ++i) {
+    GroundTruthFrame fr;
+    fr.timestamp = i / 30.0;
+    fr.pitch_deg = -35;
+    fr.height_m = 1.0;
+    fr.distance_m = i ? std::optional<double>() : std::optional<double>(1.2);
+    fr.visible_steps = {0, 1};
+    gt.frames.push_back(fr);
+  }
+  return gt;
+}
+
+fs::path write_sequence(const std::string& name) {
+  const fs::path dir = temp_dir(name);
+  SequenceWriter w(dir.string(), image(32, 24, 0).K, 0.001);
+  w.write(image(32, 24, 1000), 0.0);
+  w.write(image(32, 24, 2000), 1.0 / 30);
+  w.finish(truth());
+  return dir;
+}
+
+void expect_error(const fs::path& dir, const std::string& needle, bool on_read = false) {
+  try {
+    SequenceReader r(dir.string());
+    if (on_read) r.read(0);
+    FAIL() << "no error for " << needle;
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+TEST(Sequence, RoundTrip) {
+  const fs::path dir = write_sequence("rt");
+  SequenceReader r(dir.string());
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r.intrinsics().width, 32);
+  EXPECT_DOUBLE_EQ(r.depth_scale(), 0.001);
+  const DepthImage b = r.read(1);
+  EXPECT_EQ(b.depth, image(32, 24, 2000).depth);
+  EXPECT_EQ(b.seq, 1);
+  EXPECT_EQ(b.utime, 33333);
+  ASSERT_TRUE(r.ground_truth());
+  const GroundTruth& gt = *r.ground_truth();
+  EXPECT_EQ(gt.scene, "unit");
+  ASSERT_EQ(gt.flights.size(), 1u);
+  ASSERT_EQ(gt.flights[0].steps.size(), 3u);
+  EXPECT_TRUE(gt.flights[0].steps[2].landing);
+  EXPECT_NEAR(gt.flights[0].steps[1].nosing_m.z(), 0.36, 1e-12);
+  ASSERT_EQ(gt.frames.size(), 2u);
+  EXPECT_TRUE(gt.frames[0].distance_m.has_value());
+  EXPECT_FALSE(gt.frames[1].distance_m.has_value());
+  // The file holds DESIGN.md's keys.
+  const auto j = read_json_file((dir / "groundtruth.json").string());
+  EXPECT_TRUE(j["flights"][0]["steps"][0].contains("riser_height_m"));
+  EXPECT_TRUE(j["flights"][0].contains("top_landing_depth_m"));
+  EXPECT_TRUE(j["frames"][1]["distance_m"].is_null());
+  EXPECT_EQ(j["frames"][0]["visible_steps"].size(), 2u);
+  fs::remove_all(dir);
+}
+
+TEST(Sequence, ReadsTheRealDataDirectories) {
+  for (const char* name : {"kinect1_thesis_up", "kinect2_lab_up"}) {
+    const fs::path dir = fs::path(STAIRS_SOURCE_DIR) / ".." / "shared" / "realdata" / name;
+    if (!fs::exists(dir)) GTEST_SKIP() << dir << " not present";
+    SequenceReader r(dir.string());
+    EXPECT_EQ(r.size(), 2u);
+    const DepthImage img = r.read(0);
+    EXPECT_EQ(img.depth.size(), static_cast<size_t>(r.intrinsics().width) * r.intrinsics().height);
+  }
+}
+
+TEST(Sequence, MissingCameraJson) {
+  const fs::path dir = write_sequence("nocam");
+  fs::remove(dir / "camera.json");
+  expect_error(dir, "camera.json: missing");
+  fs::remove_all(dir);
+}
+
+TEST(Sequence, BadJson) {
+  const fs::path dir = write_sequence("badjson");
+  std::ofstream(dir / "camera.json") << "{\"width\": 32, ";
+  expect_error(dir, "camera.json: bad JSON");
+  std::ofstream(dir / "camera.json") << "{\"width\": 32}";
+  expect_error(dir, "missing key 'height'");
+  std::ofstream(dir / "groundtruth.json") << "[1,2";
+  std::ofstream(dir / "camera.json") << "{\"width\":32,\"height\":24,\"fx\":1,\"fy\":1,\"cx\":0,\"cy\":0,\"depth_scale\":0.001}";
+  expect_error(dir, "groundtruth.json: bad JSON");
+  fs::remove_all(dir);
+}
+
+TEST(Sequence, MissingPng) {
+  const fs::path dir = write_sequence("nopng");
+  fs::remove(dir / "depth" / "000000.png");
+  expect_error(dir, "000000.png: missing", true);
+  fs::remove_all(dir);
+}
+
+TEST(Sequence, EightBitPng) {
+  const fs::path dir = write_sequence("8bit");
+  cv::imwrite((dir / "depth" / "000000.png").string(), cv::Mat(24, 32, CV_8UC1, cv::Scalar(7)));
+  expect_error(dir, "16-bit", true);
+  fs::remove_all(dir);
+}
+
+TEST(Sequence, MisSizedPng) {
+  const fs::path dir = write_sequence("size");
+  cv::imwrite((dir / "depth" / "000000.png").string(), cv::Mat(20, 32, CV_16UC1, cv::Scalar(700)));
+  expect_error(dir, "does not match camera.json", true);
+  fs::remove_all(dir);
+}
+
+TEST(Sequence, UnfinishedWriterLeavesNoIndex) {
+  const fs::path dir = temp_dir("unfinished");
+  {
+    SequenceWriter w(dir.string(), image(8, 8, 0).K, 0.001);
+    w.write(image(8, 8, 10), 0.0);
+  }  // no finish(): interrupted
+  EXPECT_FALSE(fs::exists(dir / "depth.txt"));
+  expect_error(dir, "camera.json: missing");
+  fs::remove_all(dir);
+}
