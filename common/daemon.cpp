@@ -179,10 +179,10 @@ void StatusReporter::tick() {
   published_at_last_tick_ = published_;
   if (lcm_) lcm_->publish(channel_, &msg);
   if (tty_ || verbose_) {
-    std::fprintf(stderr, "%s: %lld in, %lld out, %.1f Hz, %.2f ms median, %lld dropped, %lld invalid%s\n",
+    std::fprintf(stderr, "%s: %lld in, %lld out, %.1f Hz, %.2f ms median, %lld dropped, %lld invalid\n",
                  name_.c_str(), static_cast<long long>(msg.received), static_cast<long long>(msg.published),
                  msg.rate_hz, msg.latency_ms, static_cast<long long>(msg.dropped),
-                 static_cast<long long>(msg.invalid), tty_ ? "" : "");
+                 static_cast<long long>(msg.invalid));
   }
 }
 
