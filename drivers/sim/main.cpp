@@ -1,0 +1,207 @@
+// stairs-sim: a simulated Kinect v1 on parametric staircases with exact ground
+// truth. Publishes STAIRS_DEPTH + STAIRS_GROUND_TRUTH on LCM at the frame rate,
+// or writes an LCM log, a sequence directory or an .oni recording.
+#include "drivers/sim/render.hpp"
+#include "drivers/sim/sim_setup.hpp"
+
+#include "common/daemon.hpp"
+#include "common/json_io.hpp"
+#include "common/lcm_bridge.hpp"
+#include "common/lcm_log.hpp"
+#include "common/sequence.hpp"
+
+#ifdef STAIRS_SIM_HAVE_ONI
+#include "drivers/openni2/oni_writer.hpp"
+#endif
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+using namespace stairs;
+using namespace stairs::sim;
+
+namespace {
+
+struct Outputs {
+  std::unique_ptr<LogWriter> log;
+  std::unique_ptr<SequenceWriter> seq;
+  std::string seq_dir;
+#ifdef STAIRS_SIM_HAVE_ONI
+  std::unique_ptr<OniWriter> oni;
+#endif
+  std::unique_ptr<lcm::LCM> lcm;
+};
+
+void list_presets() {
+  for (const std::string& name : preset_names()) std::printf("%-14s %s\n", name.c_str(), preset_summary(name).c_str());
+}
+
+// Per-frame render time of `frames` frames: median, p95 and frames/s.
+void bench(Renderer& r, const Trajectory& traj, int frames) {
+  std::vector<double> ms;
+  for (int f = 0; f < frames; ++f) {
+    const Eigen::Isometry3d T = traj.pose(f % traj.frames());
+    const auto t0 = std::chrono::steady_clock::now();
+    const DepthImage img = r.render(T, 0, f);
+    r.truth(T, traj.time_s(f), img);
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  const double median = ms[ms.size() / 2], p95 = ms[std::min(ms.size() - 1, ms.size() * 95 / 100)];
+  std::printf("%dx%d, %d frames (render + truth): median %.2f ms, p95 %.2f ms, %.1f frames/s at the median\n",
+              r.intrinsics().width, r.intrinsics().height, frames, median, p95, 1000.0 / median);
+}
+
+int run(int argc, char** argv) {
+  Options o("stairs-sim",
+            "Simulated Kinect v1 on parametric staircases with exact ground truth. Without --log/--seq/--oni it\n"
+            "publishes depth_frame_t on STAIRS_DEPTH at the frame rate and ground_truth_t on STAIRS_GROUND_TRUTH\n"
+            "(same utime and seq). The same --seed gives the same bytes.");
+  add_setup_options(o);
+  o.add("frames", "N", "stop after N frames (0 = the whole trajectory)", "0")
+      .add("log", "FILE", "write an LCM log (depth + ground truth) instead of publishing")
+      .add("seq", "DIR", "write a sequence directory with groundtruth.json instead of publishing")
+      .add("oni", "FILE", "write an OpenNI .oni recording of the depth instead of publishing")
+      .add("publish", "", "publish on LCM even when writing files")
+      .add("lcm-url", "URL", "LCM URL (empty = LCM's default)", "")
+      .add("depth-channel", "NAME", "depth channel", "STAIRS_DEPTH")
+      .add("truth-channel", "NAME", "ground-truth channel", "STAIRS_GROUND_TRUTH")
+      .add("status-channel", "NAME", "status channel", "STAIRS_STATUS")
+      .add("zlib", "LEVEL", "depth compression: 0 = raw, 1..9 = zlib", "1")
+      .add("fast", "", "publish as fast as possible instead of at the frame rate")
+      .add("loop", "", "when publishing, start the trajectory again at its end")
+      .add("start-utime", "US", "utime of the first frame in files (publishing uses the host clock)", "0")
+      .add("bench", "N", "render N frames without output and print the time per frame")
+      .add("verbose", "", "status line once a second even when stderr is not a terminal");
+  o.parse(argc, argv);
+  if (o.flag("list")) {
+    list_presets();
+    return 0;
+  }
+  const SimSetup setup = setup_from_options(o);
+  Renderer renderer(setup.scene, setup.K, setup.sensor, setup.seed);
+  const Trajectory traj(setup.scene, setup.trajectory);
+  const int zlib = o.get_int("zlib");
+  if (zlib < 0 || zlib > 9) throw std::runtime_error("--zlib must be within 0..9");
+  if (o.has("bench")) {
+    bench(renderer, traj, std::max(1, o.get_int("bench")));
+    return 0;
+  }
+  int frames = traj.frames();
+  if (o.get_int("frames") > 0) frames = std::min(frames, o.get_int("frames"));
+  const bool to_files = o.has("log") || o.has("seq") || o.has("oni");
+  const bool publish = !to_files || o.flag("publish");
+  const bool loop = publish && o.flag("loop");
+  const int64_t start_utime = static_cast<int64_t>(o.get_double("start-utime"));
+
+  Outputs out;
+  if (o.has("log")) out.log = std::make_unique<LogWriter>(o.get("log"));
+  if (o.has("seq")) {
+    out.seq_dir = o.get("seq");
+    out.seq = std::make_unique<SequenceWriter>(out.seq_dir, setup.K, 0.001);
+  }
+  if (o.has("oni")) {
+#ifdef STAIRS_SIM_HAVE_ONI
+    out.oni = std::make_unique<OniWriter>(o.get("oni"), setup.K.width, setup.K.height,
+                                          static_cast<int>(std::lround(setup.trajectory.fps)));
+#else
+    throw std::runtime_error("--oni: this build has no .oni writer (target stairs_oni missing)");
+#endif
+  }
+  if (publish) {
+    out.lcm = std::make_unique<lcm::LCM>(o.get("lcm-url"));
+    if (!out.lcm->good()) throw std::runtime_error("cannot open LCM with URL '" + o.get("lcm-url") + "'");
+  }
+  StatusReporter status(out.lcm.get(), "stairs-sim", o.get("status-channel"), o.flag("verbose"));
+  install_stop_signals();
+
+  const GroundTruth stair = renderer.stair_truth();
+  GroundTruth sequence_truth = stair;
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  const auto period = std::chrono::duration<double>(1.0 / setup.trajectory.fps);
+  auto next_frame = std::chrono::steady_clock::now();
+  auto last_progress = std::chrono::steady_clock::now();
+  int32_t seq = 0;
+  for (int f = 0; !stop_requested(); ++f) {
+    if (f == frames) {
+      if (!loop) break;
+      f = 0;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const double t_s = seq / setup.trajectory.fps;  // sequence time, continues across loops
+    const int64_t utime = publish && !to_files ? now_utime() : start_utime + std::llround(t_s * 1e6);
+    const Eigen::Isometry3d T = traj.pose(f);
+    const DepthImage img = renderer.render(T, utime, seq);
+    GroundTruthFrame truth = renderer.truth(T, t_s, img);
+    const depth_frame_t depth_msg = to_lcm(img, zlib);
+    const ground_truth_t truth_msg = to_lcm(stair, truth, utime, seq);
+    if (out.log) {
+      out.log->write_message(o.get("depth-channel"), utime, depth_msg);
+      out.log->write_message(o.get("truth-channel"), utime, truth_msg);
+    }
+    if (out.seq) {
+      out.seq->write(img, t_s);
+      sequence_truth.frames.push_back(truth);
+    }
+#ifdef STAIRS_SIM_HAVE_ONI
+    if (out.oni) out.oni->write(img);
+#endif
+    if (publish) {
+      out.lcm->publish(o.get("depth-channel"), &depth_msg);
+      out.lcm->publish(o.get("truth-channel"), &truth_msg);
+      status.published(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      status.tick();
+    }
+    ++seq;
+    if (to_files && (tty || o.flag("verbose")) && std::chrono::steady_clock::now() - last_progress > std::chrono::seconds(1)) {
+      last_progress = std::chrono::steady_clock::now();
+      std::fprintf(stderr, "\rstairs-sim: frame %d/%d", f + 1, frames);
+      std::fflush(stderr);
+    }
+    if (publish && !o.flag("fast")) {
+      next_frame += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
+      const auto now = std::chrono::steady_clock::now();
+      if (next_frame > now) std::this_thread::sleep_until(next_frame);
+      else if (now - next_frame > std::chrono::seconds(1)) next_frame = now;  // fell far behind: do not burst
+      else status.dropped("behind the frame rate");
+    }
+  }
+  // Files are completed only by a whole run: an interrupted one leaves
+  // FILE.partial and a sequence directory without depth.txt.
+  const bool complete = !stop_requested() || loop;
+  if (complete && out.log) out.log->close();
+  if (complete && out.seq) {
+    nlohmann::json gt = to_json(sequence_truth);
+    gt["generator"] = setup_to_json(setup);
+    gt["visible_min_pixels"] = renderer.visible_min_pixels();
+    for (size_t i = 0; i < gt["frames"].size(); ++i) gt["frames"][i]["seq"] = i;
+    write_json_file(out.seq_dir + "/groundtruth.json", gt);
+    out.seq->finish();
+  }
+#ifdef STAIRS_SIM_HAVE_ONI
+  if (out.oni) out.oni->close();
+#endif
+  if (to_files && (tty || o.flag("verbose") || !complete))
+    std::fprintf(stderr, "\rstairs-sim: %d frames written%s\n", seq, complete ? "" : " (interrupted: files left incomplete)");
+  if (publish) status.final_report();
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "stairs-sim: " << e.what() << "\n";
+    return 1;
+  }
+}

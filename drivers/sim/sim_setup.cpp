@@ -1,0 +1,161 @@
+#include "drivers/sim/sim_setup.hpp"
+
+#include "common/cloud.hpp"
+#include "common/json_io.hpp"
+
+#include <stdexcept>
+
+namespace stairs::sim {
+namespace {
+
+const char* const kSensorSwitches[][2] = {
+    {"no-shadow", "projector shadow"},     {"no-axial-noise", "axial noise"},
+    {"no-quantisation", "disparity quantisation"}, {"no-lateral-noise", "lateral edge noise"},
+    {"no-grazing", "grazing-incidence dropout"},   {"no-holes", "random holes"}};
+
+Intrinsics parse_resolution(const std::string& r) {
+  int w = 0, h = 0;
+  char x = 0;
+  if (std::sscanf(r.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 16 || h < 16 || w > 2048 || h > 2048)
+    throw std::runtime_error("--resolution: expected WIDTHxHEIGHT (e.g. 640x480, 320x240), got '" + r + "'");
+  return scale_intrinsics({640, 480, 525.0, 525.0, 319.5, 239.5}, w, h);
+}
+
+double positive(const Options& o, const std::string& name) {
+  const double v = o.get_double(name);
+  if (!(v > 0.0)) throw std::runtime_error("--" + name + " must be positive");
+  return v;
+}
+
+}  // namespace
+
+void add_setup_options(Options& o) {
+  o.add("list", "", "list the scene presets and exit")
+      .add("preset", "NAME", "scene preset (see --list)", "straight_up")
+      .add("scenario", "FILE", "scene from a JSON scenario file (drivers/sim/README.md); may name a preset")
+      .add("steps", "N", "override: steps per flight (uniform risers/treads)")
+      .add("riser", "M", "override: riser height of every step")
+      .add("tread", "M", "override: tread depth (going) of every step but the landings")
+      .add("landing", "M", "override: depth of every flight's landing")
+      .add("width", "M", "override: flight width")
+      .add("nosing", "M", "override: nosing overhang")
+      .add("walls", "SIDES", "override: side walls none|left|right|both")
+      .add("direction", "DIR", "up or down; auto = down for presets named *_down", "auto")
+      .add("situation", "S", "approach|first_step|flight|landing|full", "full")
+      .add("carrier", "C", "handheld (1 m high, pitch -35 deg, gait wobble) or robot (0.45 m, pitching with the slope)",
+           "handheld")
+      .add("speed", "M/S", "walking speed along the path (carrier default: handheld 0.6, robot 0.3)")
+      .add("fps", "HZ", "frame rate", "30")
+      .add("height", "M", "camera height above the surface beneath (carrier default)")
+      .add("pitch", "DEG", "camera pitch, negative = down (carrier default: handheld -35, robot mount -20)")
+      .add("lateral", "M", "offset from the flight's centre line, + = left", "0")
+      .add("yaw", "DEG", "heading offset from straight up/down the stair", "0")
+      .add("wobble", "X", "scale of the hand-held wobble / robot vibration, 0 = steady", "1")
+      .add("approach", "M", "distance before the first edge where approach/full start", "3")
+      .add("resolution", "WxH", "depth resolution; intrinsics scaled from Kinect v1 640x480 fx=fy=525", "640x480")
+      .add("perfect", "", "noiseless depth: no sensor effects except the 0.5-4.5 m range");
+  for (const auto& s : kSensorSwitches) o.add(s[0], "", std::string("switch off the ") + s[1]);
+  o.add("seed", "N", "random seed: the same seed gives the same bytes", "1");
+}
+
+SimSetup setup_from_options(const Options& o) {
+  SimSetup s;
+  if (o.has("scenario")) {
+    const std::string path = o.get("scenario");
+    s.scene = scene_from_json(read_json_file(path), path);
+  } else {
+    try {
+      s.scene = make_preset(o.get("preset"));
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(std::string("--preset: ") + e.what());
+    }
+  }
+  Scene& sc = s.scene;
+  if (o.has("steps") || o.has("riser") || o.has("tread") || o.has("landing")) {
+    if (sc.kind != SceneKind::Stairs) throw std::runtime_error("--steps/--riser/--tread/--landing need a stairs scene");
+    for (FlightSpec& f : sc.flights) {
+      const int steps = o.has("steps") ? o.get_int("steps") : static_cast<int>(f.riser_m.size());
+      if (steps < 1 || steps > 100) throw std::runtime_error("--steps must be within 1..100");
+      const double riser = o.has("riser") ? positive(o, "riser") : f.riser_m.front();
+      const double tread = o.has("tread") ? positive(o, "tread") : (f.tread_m.size() > 1 ? f.tread_m.front() : 0.25);
+      const double landing = o.has("landing") ? positive(o, "landing") : f.tread_m.back();
+      f = uniform_flight(steps, riser, tread, landing);
+    }
+  }
+  if (o.has("width")) sc.width_m = positive(o, "width");
+  if (o.has("nosing")) {
+    sc.nosing_m = o.get_double("nosing");
+    if (sc.nosing_m < 0.0 || sc.nosing_m > 0.1) throw std::runtime_error("--nosing must be within 0..0.1 m");
+  }
+  if (o.has("walls")) {
+    try {
+      sc.walls = walls_from_name(o.get("walls"));
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(std::string("--walls: ") + e.what());
+    }
+  }
+
+  s.K = parse_resolution(o.get("resolution"));
+
+  s.sensor.perfect = o.flag("perfect");
+  s.sensor.shadow = !o.flag("no-shadow");
+  s.sensor.axial_noise = !o.flag("no-axial-noise");
+  s.sensor.quantisation = !o.flag("no-quantisation");
+  s.sensor.lateral_noise = !o.flag("no-lateral-noise");
+  s.sensor.grazing_dropout = !o.flag("no-grazing");
+  s.sensor.holes = !o.flag("no-holes");
+
+  TrajectoryConfig& t = s.trajectory;
+  try {
+    t = trajectory_defaults(carrier_from_name(o.get("carrier")));
+    t.situation = situation_from_name(o.get("situation"));
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
+  const std::string dir = o.get("direction");
+  if (dir == "auto") t.descending = sc.name.size() > 5 && sc.name.substr(sc.name.size() - 5) == "_down";
+  else if (dir == "up" || dir == "down") t.descending = dir == "down";
+  else throw std::runtime_error("--direction must be up, down or auto");
+  if (o.has("speed")) t.speed_mps = positive(o, "speed");
+  t.fps = positive(o, "fps");
+  if (o.has("height")) t.height_m = positive(o, "height");
+  if (o.has("pitch")) t.pitch_deg = o.get_double("pitch");
+  t.lateral_m = o.get_double("lateral");
+  t.yaw_deg = o.get_double("yaw");
+  t.wobble = o.get_double("wobble");
+  t.approach_m = positive(o, "approach");
+  const double seed = o.get_double("seed");
+  if (seed < 0 || seed != std::floor(seed)) throw std::runtime_error("--seed must be a non-negative integer");
+  s.seed = static_cast<uint64_t>(seed);
+  return s;
+}
+
+nlohmann::json setup_to_json(const SimSetup& s) {
+  const SensorModel& m = s.sensor;
+  const TrajectoryConfig& t = s.trajectory;
+  return {{"seed", s.seed},
+          {"camera", to_json(s.K, 0.001)},
+          {"sensor",
+           {{"perfect", m.perfect},
+            {"shadow", m.shadow},
+            {"axial_noise", m.axial_noise},
+            {"quantisation", m.quantisation},
+            {"lateral_noise", m.lateral_noise},
+            {"grazing_dropout", m.grazing_dropout},
+            {"holes", m.holes},
+            {"range_m", {m.min_range_m, m.max_range_m}}}},
+          {"trajectory",
+           {{"carrier", carrier_name(t.carrier)},
+            {"situation", situation_name(t.situation)},
+            {"direction", t.descending ? "down" : "up"},
+            {"speed_mps", t.speed_mps},
+            {"fps", t.fps},
+            {"height_m", t.height_m},
+            {"pitch_deg", t.pitch_deg},
+            {"lateral_m", t.lateral_m},
+            {"yaw_deg", t.yaw_deg},
+            {"wobble", t.wobble}}},
+          {"scenario", scene_to_json(s.scene)}};
+}
+
+}  // namespace stairs::sim

@@ -1,0 +1,58 @@
+#include "perception/config.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <stdexcept>
+
+namespace stairs {
+
+namespace {
+
+template <class T>
+void read_field(const nlohmann::json& value, const std::string& path, const std::string& key, T& field) {
+  const bool ok = std::is_same<T, bool>::value ? value.is_boolean()
+                  : std::is_integral<T>::value ? value.is_number_integer()
+                                               : value.is_number();
+  if (!ok) throw std::runtime_error(path + ": key '" + key + "' has the wrong type");
+  field = value.get<T>();
+}
+
+}  // namespace
+
+PerceptionConfig load_perception_config(const std::string& json_path) {
+  std::ifstream in(json_path);
+  if (!in) throw std::runtime_error(json_path + ": cannot open perception config");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(json_path + ": invalid JSON: " + e.what());
+  }
+  if (!j.is_object()) throw std::runtime_error(json_path + ": perception config must be a JSON object");
+  PerceptionConfig c;
+#define STAIRS_PERCEPTION_FIELDS(X)                                                                      \
+  X(grid_cell_px) X(normal_radius_cells) X(max_depth_m) X(min_depth_m) X(jump_ratio) X(inverse_depth_kink_per_m) X(smooth_normals)   \
+  X(grow_angle_deg) X(grow_region_angle_deg) X(grow_distance_m) X(grow_max_distance_m) X(min_plane_px_320) X(max_tilt_from_image_up_deg) X(parallel_deg) \
+  X(beneath_max_distance_m) X(horizontal_tol_deg) X(vertical_tol_deg) X(merge_bin_m) X(merge_gap_m)      \
+  X(extent_percentile) X(riser_min_m) X(riser_max_m) X(tread_min_m) X(tread_max_m) X(step_rule_min_m)    \
+  X(step_rule_max_m) X(din_tolerance) X(landing_min_depth_m) X(max_lateral_gap_m) X(min_steps)           \
+  X(max_sample_points) X(max_other_points) X(max_planes)
+  for (const auto& [key, value] : j.items()) {
+#define STAIRS_READ(name)                     \
+  if (key == #name) {                         \
+    read_field(value, json_path, key, c.name); \
+    continue;                                 \
+  }
+    STAIRS_PERCEPTION_FIELDS(STAIRS_READ)
+#undef STAIRS_READ
+    throw std::runtime_error(json_path + ": unknown perception config key '" + key + "'");
+  }
+#undef STAIRS_PERCEPTION_FIELDS
+  if (c.grid_cell_px < 1 || c.normal_radius_cells < 1 || c.max_sample_points < 1 ||
+      c.max_sample_points > 1024 || c.max_planes < 1 || c.max_planes > 192 || c.min_steps < 1)
+    throw std::runtime_error(json_path + ": perception config value out of range");
+  return c;
+}
+
+}  // namespace stairs

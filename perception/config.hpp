@@ -1,0 +1,61 @@
+// Every parameter of the perception pipeline, with its unit and default.
+// Pixel counts are given for 640x480 and scaled with the frame's resolution.
+#pragma once
+
+#include <string>
+
+namespace stairs {
+
+struct PerceptionConfig {
+  // --- normals: organized grid of cell means, normals by neighbour cross products
+  int grid_cell_px = 4;            // px at 640 wide; cell side (scaled, >= 1)
+  int normal_radius_cells = 2;     // cells; half baseline of the cross product
+  float max_depth_m = 5.0f;        // m; farther measurements are ignored
+  float min_depth_m = 0.3f;        // m
+  float jump_ratio = 0.05f;        // |dz| / z above which two cells are not neighbours
+  float inverse_depth_kink_per_m = 0.008f;  // 1/m; |1/z_l + 1/z_r - 2/z_c| above this = a corner or
+                                             // jump between (1/z is affine in the image on a plane)
+  bool smooth_normals = true;      // 3x3 mean of the normals
+
+  // --- region_growing: "last normal" model (over-segments, never under-segments)
+  float grow_angle_deg = 15.0f;      // max angle between neighbouring normals
+  float grow_region_angle_deg = 20.0f;  // max angle to the region's mean normal (no leak round corners)
+  float grow_distance_m = 0.01f;     // max point-to-plane distance to the last cell at 1 m (x z^2)
+  float grow_max_distance_m = 0.03f;  // cap of that distance: a riser seen from above never joins
+  int min_plane_px_320 = 100;        // px at 320x240; smaller planes are dropped (scaled)
+
+  // --- gravity (Algorithm 4, weighted horizontal normals)
+  float max_tilt_from_image_up_deg = 80.0f;  // horizontal-plane candidates vs. image up
+  float parallel_deg = 4.0f;                 // normals this close count as parallel
+  float beneath_max_distance_m = 2.0f;       // m; nearest horizontal surface ahead used for height
+
+  // --- plane_geometry
+  float horizontal_tol_deg = 12.0f;   // tread/landing: normal within this of up
+  float vertical_tol_deg = 15.0f;     // riser: normal within this of horizontal
+  float merge_bin_m = 0.05f;          // height/depth histogram bin
+  float merge_gap_m = 0.15f;          // m; same-bin planes merge when this close in the plane
+  float extent_percentile = 0.02f;    // fraction trimmed at each end of an extent
+
+  // --- steps and grammar (DIN 18065 with tolerance)
+  float riser_min_m = 0.14f;
+  float riser_max_m = 0.20f;
+  float tread_min_m = 0.23f;
+  float tread_max_m = 0.37f;
+  float step_rule_min_m = 0.59f;      // 2R + T lower bound
+  float step_rule_max_m = 0.65f;      // 2R + T upper bound
+  float din_tolerance = 0.4f;         // relative tolerance on every DIN bound
+  float landing_min_depth_m = 0.50f;  // a tread deeper than this is a landing
+  float max_lateral_gap_m = 0.5f;     // m; consecutive treads must overlap laterally up to this gap
+  int min_steps = 2;                  // fewer detected steps = no staircase
+
+  // --- observation
+  int max_sample_points = 1024;  // per tread/riser, spatially even grid subsample
+  int max_other_points = 64;     // per other plane
+  int max_planes = 64;           // segmented planes reported (<= 192), treads/risers first
+};
+
+// Reads a JSON object of parameters (any subset). Throws std::runtime_error
+// naming the file and key on an unknown key, a wrong type or an unreadable file.
+PerceptionConfig load_perception_config(const std::string& json_path);
+
+}  // namespace stairs

@@ -1,0 +1,89 @@
+// stairs-perception: STAIRS_DEPTH in, STAIRS_OBSERVATION out. Thin: decode,
+// validate, hand the newest frame to a worker (older ones are dropped and
+// counted), Pipeline::process, encode, publish, report status.
+#include "common/daemon.hpp"
+#include "common/lcm_bridge.hpp"
+#include "perception/config.hpp"
+#include "perception/pipeline.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <iostream>
+#include <thread>
+
+namespace {
+
+struct Receiver {
+  stairs::LatestSlot<stairs::DepthImage>* slot;
+  stairs::StatusReporter* status;
+
+  void on_depth(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    status->received();
+    stairs::depth_frame_t msg;
+    stairs::DepthImage img;
+    std::string error;
+    if (!stairs::decode_message(rbuf->data, rbuf->data_size, msg, error) || !stairs::from_lcm(msg, img, error)) {
+      status->invalid(error);
+      return;
+    }
+    if (slot->put(std::move(img))) status->dropped("worker busy: older depth frame replaced");
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  stairs::Options opts("stairs-perception",
+                       "Finds staircases in depth frames (thesis chapters 3-4) and publishes one stair "
+                       "observation per processed frame.");
+  opts.add("lcm-url", "URL", "LCM URL (empty = LCM's default)", "")
+      .add("depth-channel", "NAME", "channel of depth_frame_t input", "STAIRS_DEPTH")
+      .add("observation-channel", "NAME", "channel of stair_observation_t output", "STAIRS_OBSERVATION")
+      .add("status-channel", "NAME", "channel of daemon_status_t", "STAIRS_STATUS")
+      .add("config", "FILE", "perception parameters as JSON (any subset of PerceptionConfig)", "")
+      .add("verbose", "", "print the status line once a second even without a terminal");
+  opts.parse(argc, argv);
+
+  stairs::PerceptionConfig config;
+  try {
+    if (!opts.get("config").empty()) config = stairs::load_perception_config(opts.get("config"));
+  } catch (const std::exception& e) {
+    std::cerr << "stairs-perception: " << e.what() << "\n";
+    return 2;
+  }
+  lcm::LCM lcm(opts.get("lcm-url"));
+  if (!lcm.good()) {
+    std::cerr << "stairs-perception: cannot open LCM URL '" << opts.get("lcm-url") << "'\n";
+    return 1;
+  }
+  stairs::install_stop_signals();
+  stairs::StatusReporter status(&lcm, "stairs-perception", opts.get("status-channel"), opts.flag("verbose"));
+  stairs::LatestSlot<stairs::DepthImage> slot;
+  Receiver receiver{&slot, &status};
+  lcm.subscribe(opts.get("depth-channel"), &Receiver::on_depth, &receiver);
+
+  const std::string out_channel = opts.get("observation-channel");
+  std::thread worker([&] {
+    stairs::Pipeline pipeline(config);
+    while (!stairs::stop_requested()) {
+      auto frame = slot.take(std::chrono::milliseconds(100));
+      if (!frame) continue;
+      const stairs::Observation obs = pipeline.process(*frame);
+      const stairs::stair_observation_t msg = stairs::to_lcm(obs, stairs::now_utime());
+      lcm.publish(out_channel, &msg);
+      status.published(obs.latency_ms);
+    }
+  });
+  while (!stairs::stop_requested()) {
+    // A stop signal interrupts the wait: that is no failure.
+    if (lcm.handleTimeout(100) < 0 && !stairs::stop_requested()) {
+      std::cerr << "stairs-perception: LCM receive failed\n";
+      stairs::request_stop();
+      break;
+    }
+    status.tick();
+  }
+  worker.join();
+  status.final_report();
+  return 0;
+}

@@ -1,0 +1,104 @@
+#include "perception/grammar.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace stairs {
+
+bool din_riser_ok(double r, const PerceptionConfig& c) {
+  return r >= c.riser_min_m * (1 - c.din_tolerance) && r <= c.riser_max_m * (1 + c.din_tolerance);
+}
+bool din_tread_ok(double t, const PerceptionConfig& c) {
+  return t >= c.tread_min_m * (1 - c.din_tolerance) && t <= c.tread_max_m * (1 + c.din_tolerance);
+}
+bool din_rule_ok(double r, double t, const PerceptionConfig& c) {
+  const double v = 2 * r + t;
+  return v >= c.step_rule_min_m * (1 - c.din_tolerance) && v <= c.step_rule_max_m * (1 + c.din_tolerance);
+}
+
+namespace {
+
+// Relative distance of a value from the un-widened DIN interval.
+double deviation(double v, double lo, double hi) { return v < lo ? (lo - v) / lo : v > hi ? (v - hi) / hi : 0.0; }
+
+bool laterally_overlapping(const Level& a, const Level& b, const PerceptionConfig& c) {
+  return std::max(a.t_min, b.t_min) - std::min(a.t_max, b.t_max) <= c.max_lateral_gap_m;
+}
+
+// Deviation of the successor `b` of `a` (nullopt = not a successor). `prev_nosing`
+// is a's nosing when a is itself a step (its tread depth is then known).
+std::optional<double> successor(const Level& a, const Level& b, Direction dir, std::optional<float> a_nosing,
+                                const PerceptionConfig& c) {
+  const float rise = dir == Direction::Up ? b.z - a.z : a.z - b.z;
+  if (!din_riser_ok(rise, c) || !laterally_overlapping(a, b, c)) return std::nullopt;
+  double dev = deviation(rise, c.riser_min_m, c.riser_max_m);
+  constexpr float kAdjacent_m = 0.3f;   // a level ends where the next riser starts
+  if (dir == Direction::Up) {
+    if (b.s_min <= a.s_min || std::abs(a.s_max - b.s_min) > kAdjacent_m) return std::nullopt;
+    if (a_nosing) {
+      const float tread = b.s_min - *a_nosing;
+      if (tread < c.landing_min_depth_m) {
+        if (!din_tread_ok(tread, c) || !din_rule_ok(rise, tread, c)) return std::nullopt;
+        dev += deviation(tread, c.tread_min_m, c.tread_max_m);
+      }
+    }
+  } else {
+    // Going down the lower tread shows beyond the upper nosing (its near part is hidden).
+    if (b.s_max <= a.s_max || b.s_min < a.s_max - kAdjacent_m) return std::nullopt;
+    const float tread = b.s_max - a.s_max;
+    if (tread < c.landing_min_depth_m) {
+      if (!din_tread_ok(tread, c) || !din_rule_ok(rise, tread, c)) return std::nullopt;
+      dev += deviation(tread, c.tread_min_m, c.tread_max_m);
+    }
+  }
+  return dev;
+}
+
+StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction dir, const PerceptionConfig& c) {
+  StairChain chain;
+  chain.direction = dir;
+  chain.levels.push_back(levels[start]);
+  std::vector<uint8_t> used(levels.size(), 0);
+  used[start] = 1;
+  for (;;) {
+    const Level& a = chain.levels.back();
+    std::optional<float> a_nosing;
+    if (dir == Direction::Up && chain.levels.size() >= 2) a_nosing = a.s_min;
+    int best = -1;
+    double best_dev = 0;
+    float best_rise = 0;
+    for (size_t j = 0; j < levels.size(); ++j) {
+      if (used[j]) continue;
+      const auto dev = successor(a, levels[j], dir, a_nosing, c);
+      if (!dev) continue;
+      const float rise = std::abs(levels[j].z - a.z);
+      if (best < 0 || rise < best_rise) {  // the nearest level in height is the successor
+        best = static_cast<int>(j);
+        best_dev = *dev;
+        best_rise = rise;
+      }
+    }
+    if (best < 0) break;
+    used[best] = 1;
+    chain.levels.push_back(levels[best]);
+    chain.deviation += best_dev;
+  }
+  return chain;
+}
+
+}  // namespace
+
+StairChain best_chain(const std::vector<Level>& levels, const PerceptionConfig& c) {
+  StairChain best;
+  for (Direction dir : {Direction::Up, Direction::Down})
+    for (size_t i = 0; i < levels.size(); ++i) {
+      StairChain ch = grow_chain(levels, i, dir, c);
+      if (ch.steps() > best.steps() || (ch.steps() == best.steps() && ch.deviation < best.deviation))
+        best = std::move(ch);
+    }
+  if (best.steps() < 1) return StairChain{};
+  return best;
+}
+
+}  // namespace stairs

@@ -1,0 +1,30 @@
+// Stage 1: organized grid of cell-mean points and their surface normals.
+#pragma once
+
+#include "common/types.hpp"
+#include "perception/config.hpp"
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace stairs {
+
+// A downsampled organized cloud in the camera optical frame: one point per
+// cell of cell x cell pixels (mean of its valid pixels), NaN-free: `valid`
+// says which cells hold a point and which a normal.
+struct NormalGrid {
+  int width = 0, height = 0;  // cells
+  int cell_px = 1;            // pixels per cell side
+  std::vector<Eigen::Vector3f> points;   // m, optical frame
+  std::vector<Eigen::Vector3f> normals;  // unit, pointing towards the camera
+  std::vector<uint8_t> has_point, has_normal;
+  int index(int gx, int gy) const { return gy * width + gx; }
+};
+
+// Cell side in pixels for a frame of the given width (grid_cell_px is for 640).
+int grid_cell_px(const PerceptionConfig& cfg, int image_width);
+
+// Fills `grid` (its buffers are reused across frames).
+void compute_normals(const DepthImage& frame, const PerceptionConfig& cfg, NormalGrid& grid);
+
+}  // namespace stairs

@@ -1,0 +1,123 @@
+#include "perception/pipeline.hpp"
+
+#include "perception/gravity.hpp"
+#include "perception/grammar.hpp"
+#include "perception/plane_geometry.hpp"
+#include "perception/reconstruction.hpp"
+#include "perception/region_growing.hpp"
+#include "perception/steps.hpp"
+
+#include <chrono>
+#include <cmath>
+
+namespace stairs {
+
+namespace {
+
+class StageClock {
+ public:
+  explicit StageClock(Observation& obs) : obs_(obs), start_(now()), last_(start_) {}
+  void mark(const char* name) {
+    const auto t = now();
+    obs_.stages.push_back({name, std::chrono::duration<double, std::milli>(t - last_).count()});
+    last_ = t;
+  }
+  void finish() { obs_.latency_ms = std::chrono::duration<double, std::milli>(now() - start_).count(); }
+
+ private:
+  static std::chrono::steady_clock::time_point now() { return std::chrono::steady_clock::now(); }
+  Observation& obs_;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+bool usable(const DepthImage& f, std::string& why) {
+  const Intrinsics& K = f.K;
+  if (K.width <= 0 || K.height <= 0) return why = "empty frame", false;
+  if (f.depth.size() != static_cast<size_t>(K.width) * K.height) return why = "depth size != width*height", false;
+  if (!(std::isfinite(K.fx) && std::isfinite(K.fy) && std::isfinite(K.cx) && std::isfinite(K.cy) && K.fx > 0 &&
+        K.fy > 0))
+    return why = "invalid intrinsics", false;
+  if (!(std::isfinite(f.depth_scale) && f.depth_scale > 0)) return why = "invalid depth_scale", false;
+  return true;
+}
+
+// Height above the horizontal surface beneath. That surface is rarely in view
+// (a Kinect at pitch -35 deg sees the ground from ~0.6 m ahead), so it is the
+// nearest horizontal surface ahead, unless a riser stands in front of that
+// surface: then the camera is over the surface at the riser's foot.
+std::optional<double> camera_height(const PlaneSet& ps, const PerceptionConfig& cfg) {
+  int best = -1;
+  float best_s = cfg.beneath_max_distance_m;
+  for (size_t i = 0; i < ps.planes.size(); ++i) {
+    if (ps.planes[i].kind != PlaneKind::Tread) continue;
+    const PlaneExtent& e = ps.extents[i];
+    if (e.z_mean >= 0) continue;  // above the camera
+    const float s = std::max(0.0f, e.s_min);
+    if (s < best_s) {
+      best_s = s;
+      best = static_cast<int>(i);
+    }
+  }
+  if (best < 0) return std::nullopt;
+  const PlaneExtent* riser = nullptr;
+  for (size_t i = 0; i < ps.planes.size(); ++i) {
+    const PlaneExtent& e = ps.extents[i];
+    if (ps.planes[i].kind == PlaneKind::Riser && e.s_mean > 0 && e.s_mean < best_s && e.z_min < 0 &&
+        (!riser || e.s_mean < riser->s_mean))
+      riser = &e;
+  }
+  return -static_cast<double>(riser ? riser->z_min : ps.extents[best].z_mean);
+}
+
+}  // namespace
+
+Pipeline::Pipeline(PerceptionConfig cfg) : cfg_(cfg) {}
+
+Observation Pipeline::process(const DepthImage& frame) {
+  Observation obs;
+  obs.source_utime = frame.utime;
+  obs.source_seq = frame.seq;
+  StageClock clock(obs);
+  if (!usable(frame, obs.status)) {
+    clock.finish();
+    return obs;
+  }
+  compute_normals(frame, cfg_, grid_);
+  clock.mark("normals");
+  std::vector<Segment> segments = grow_regions(grid_, cfg_, frame.K.width, frame.K.height, labels_);
+  clock.mark("region_growing");
+  const auto up = estimate_up(segments, cfg_);
+  clock.mark("gravity");
+  if (!up) {
+    obs.status = "no horizontal plane: pose unknown";
+    clock.finish();
+    return obs;
+  }
+  obs.camera = pose_from_up(*up);
+  const Eigen::Matrix3f R = obs.camera.gravity_rotation.toRotationMatrix().cast<float>();
+  PlaneSet ps = plane_geometry(grid_, segments, R, cfg_);
+  obs.camera.height_m = camera_height(ps, cfg_);
+  clock.mark("plane_geometry");
+  const std::vector<Level> levels = tread_levels(ps);
+  clock.mark("steps");
+  const StairChain chain = best_chain(levels, cfg_);
+  std::vector<Step> steps = steps_from_chain(ps, chain);
+  clock.mark("grammar");
+  reconstruct(ps, chain, steps, cfg_);
+  clock.mark("reconstruction");
+  if (static_cast<int>(steps.size()) >= cfg_.min_steps) {
+    obs.direction = chain.direction;
+    obs.steps = std::move(steps);
+    const double d = std::cos(ps.yaw_rad) * obs.steps.front().nosing_m.x() +
+                     std::sin(ps.yaw_rad) * obs.steps.front().nosing_m.y();
+    if (d > 0) obs.camera.distance_m = d;
+    obs.status = "ok";
+  } else {
+    obs.status = "no staircase";
+  }
+  obs.planes = std::move(ps.planes);
+  clock.finish();
+  return obs;
+}
+
+}  // namespace stairs

@@ -1,0 +1,27 @@
+// The perception pipeline: one depth frame in, one stair observation out
+// (gravity-aligned camera frame: x forward, y left, z up, camera centre origin).
+#pragma once
+
+#include "common/types.hpp"
+#include "perception/config.hpp"
+#include "perception/normals.hpp"
+
+#include <vector>
+
+namespace stairs {
+
+class Pipeline {
+ public:
+  explicit Pipeline(PerceptionConfig cfg = {});
+  // Never throws on bad input: an unusable frame gives camera.valid = false,
+  // direction None and a status naming the reason.
+  Observation process(const DepthImage& frame);
+  const PerceptionConfig& config() const { return cfg_; }
+
+ private:
+  PerceptionConfig cfg_;
+  NormalGrid grid_;          // reused buffers
+  std::vector<int> labels_;  // reused buffers
+};
+
+}  // namespace stairs

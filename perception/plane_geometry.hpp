@@ -1,0 +1,35 @@
+// Stage 4: planes in the gravity-aligned frame: histogram merge, horizontal /
+// vertical classification, bounding boxes (thesis Algorithm 5) and extents.
+#pragma once
+
+#include "perception/region_growing.hpp"
+
+#include <vector>
+
+namespace stairs {
+
+// Extent of a plane in the stair-aligned frame (s along the stair's
+// ascending/descending axis, t lateral/left, z up), trimmed percentiles, m.
+struct PlaneExtent {
+  float s_min = 0, s_max = 0, t_min = 0, t_max = 0, z_min = 0, z_max = 0;
+  float s_mean = 0, z_mean = 0;
+};
+
+struct PlaneSet {
+  std::vector<Plane> planes;        // gravity-aligned camera frame
+  std::vector<PlaneExtent> extents;  // same order
+  float yaw_rad = 0;                 // stair axis relative to camera forward
+  // Stair-aligned (s, t, z) -> gravity-aligned camera frame.
+  Eigen::Vector3f to_camera(float s, float t, float z) const;
+};
+
+// Merges the segments (optical frame) rotated by `gravity` (optical ->
+// gravity-aligned) into planes: horizontal ones binned by height, vertical
+// ones by depth along their normal, one cross-bin merge per plane.
+PlaneSet plane_geometry(const NormalGrid& grid, const std::vector<Segment>& segments,
+                        const Eigen::Matrix3f& gravity, const PerceptionConfig& cfg);
+
+// At most max_points of `cells`, spatially even on the image grid.
+std::vector<int> grid_subsample(const NormalGrid& grid, const std::vector<int>& cells, int max_points);
+
+}  // namespace stairs

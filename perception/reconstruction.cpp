@@ -1,0 +1,107 @@
+#include "perception/reconstruction.hpp"
+
+#include "perception/grammar.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stairs {
+
+namespace {
+
+// Nosing position along the stair axis.
+float axial(const PlaneSet& ps, const Step& s) {
+  return std::cos(ps.yaw_rad) * static_cast<float>(s.nosing_m.x()) +
+         std::sin(ps.yaw_rad) * static_cast<float>(s.nosing_m.y());
+}
+
+// A segmented riser whose face lies at axial position s and which spans
+// upwards (above = true) or downwards from height z.
+int riser_at(const PlaneSet& ps, float s, float z, bool above) {
+  constexpr float kTol_m = 0.06f;
+  for (size_t i = 0; i < ps.planes.size(); ++i) {
+    const PlaneExtent& e = ps.extents[i];
+    if (ps.planes[i].kind != PlaneKind::Riser || std::abs(e.s_mean - s) > 2 * kTol_m) continue;
+    if (above ? std::abs(e.z_min - z) < kTol_m && e.z_max > z + kTol_m
+              : std::abs(e.z_max - z) < kTol_m && e.z_min < z - kTol_m)
+      return static_cast<int>(i);
+  }
+  return -1;
+}
+
+// Going up, the chain's first level is a step too when a riser rises to its
+// front edge (its bottom is usually out of view: the rise is the chain's
+// median), and a riser standing on the last level is the next step, its tread
+// out of view ("treads between risers").
+void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps,
+                        const PerceptionConfig& cfg) {
+  if (steps.empty()) return;
+  std::vector<double> rises;
+  for (const Step& s : steps) rises.push_back(*s.riser_height_m);
+  std::nth_element(rises.begin(), rises.begin() + rises.size() / 2, rises.end());
+  const double median = rises[rises.size() / 2];
+  const Level& base = chain.levels.front();
+  if (const int r = riser_at(ps, base.s_min, base.z, false); r >= 0) {
+    Step s;
+    s.riser_plane = r;
+    s.tread_plane = base.plane;
+    s.riser_height_m = std::max<double>(median, ps.extents[r].z_max - ps.extents[r].z_min);
+    if (!din_riser_ok(*s.riser_height_m, cfg)) s.riser_height_m = median;
+    s.nosing_m = ps.to_camera(base.s_min, 0.5f * (base.t_min + base.t_max), base.z).cast<double>();
+    s.width_m = base.t_max - base.t_min;
+    steps.insert(steps.begin(), s);
+  }
+  const Level& top = chain.levels.back();
+  if (const int r = riser_at(ps, top.s_max, top.z, true); r >= 0) {
+    const PlaneExtent& e = ps.extents[r];
+    const double seen = e.z_max - top.z;
+    if (seen < 0.5 * median) return;  // too little of it in view to place a nosing
+    Step s;
+    s.riser_plane = r;
+    s.riser_height_m = din_riser_ok(seen, cfg) && seen > median - 0.03 ? seen : median;
+    s.nosing_m = ps.to_camera(e.s_mean, 0.5f * (e.t_min + e.t_max), top.z + static_cast<float>(*s.riser_height_m))
+                     .cast<double>();
+    s.width_m = e.t_max - e.t_min;
+    steps.push_back(s);
+  }
+}
+
+}  // namespace
+
+void reconstruct(PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps, const PerceptionConfig& cfg) {
+  const bool up = chain.direction == Direction::Up;
+  if (up) complete_ascending(ps, chain, steps, cfg);
+  // Steps are nearest first: going up the next step is farther and higher,
+  // going down the next step is farther and lower; either way a tread reaches
+  // from its nosing to the next nosing.
+  for (size_t k = 0; k < steps.size(); ++k) {
+    if (up && k + 1 == steps.size() && steps[k].tread_plane < 0) steps[k].tread_depth_m.reset();
+    if (up && k + 1 < steps.size()) steps[k].tread_depth_m = axial(ps, steps[k + 1]) - axial(ps, steps[k]);
+    if (!up && k >= 1) steps[k].tread_depth_m = axial(ps, steps[k]) - axial(ps, steps[k - 1]);
+    steps[k].landing = steps[k].tread_depth_m && *steps[k].tread_depth_m > cfg.landing_min_depth_m;
+  }
+  if (up) return;
+  for (size_t k = 0; k < steps.size(); ++k) {
+    Step& s = steps[k];
+    if (s.riser_plane >= 0 || !s.riser_height_m) continue;
+    const Level& tread = chain.levels[k];
+    const float sa = axial(ps, s), top = tread.z, bottom = tread.z - static_cast<float>(*s.riser_height_m);
+    Plane p;
+    p.kind = PlaneKind::Riser;
+    p.source = PlaneSource::Reconstructed;
+    p.normal = ps.to_camera(-1, 0, 0);
+    p.corners[Plane::kTopLeft] = ps.to_camera(sa, tread.t_max, top);
+    p.corners[Plane::kTopRight] = ps.to_camera(sa, tread.t_min, top);
+    p.corners[Plane::kBottomLeft] = ps.to_camera(sa, tread.t_max, bottom);
+    p.corners[Plane::kBottomRight] = ps.to_camera(sa, tread.t_min, bottom);
+    p.centroid = ps.to_camera(sa, 0.5f * (tread.t_min + tread.t_max), 0.5f * (top + bottom));
+    p.length_m = tread.t_max - tread.t_min;
+    p.extent_m = top - bottom;
+    PlaneExtent e{sa, sa, tread.t_min, tread.t_max, bottom, top, sa, 0.5f * (top + bottom)};
+    s.riser_plane = static_cast<int>(ps.planes.size());
+    ps.planes.push_back(std::move(p));
+    ps.extents.push_back(e);
+  }
+}
+
+}  // namespace stairs

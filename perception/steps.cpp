@@ -1,0 +1,65 @@
+#include "perception/steps.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stairs {
+
+std::vector<Level> tread_levels(const PlaneSet& ps) {
+  std::vector<Level> levels;
+  for (size_t i = 0; i < ps.planes.size(); ++i) {
+    if (ps.planes[i].kind != PlaneKind::Tread) continue;
+    const PlaneExtent& e = ps.extents[i];
+    levels.push_back({static_cast<int>(i), e.z_mean, e.s_min, e.s_max, e.t_min, e.t_max});
+  }
+  std::sort(levels.begin(), levels.end(), [](const Level& a, const Level& b) { return a.z < b.z; });
+  return levels;
+}
+
+namespace {
+
+// The segmented riser whose face lies at the nosing line, spanning the rise.
+int find_riser(const PlaneSet& ps, float s, float z_low, float z_high) {
+  int best = -1;
+  float best_d = 0.1f;
+  for (size_t i = 0; i < ps.planes.size(); ++i) {
+    if (ps.planes[i].kind != PlaneKind::Riser) continue;
+    const PlaneExtent& e = ps.extents[i];
+    if (e.z_max < z_low || e.z_min > z_high) continue;
+    const float d = std::abs(e.s_mean - s);
+    if (d < best_d) {
+      best_d = d;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain) {
+  std::vector<Step> steps;
+  const auto& L = chain.levels;
+  const bool up = chain.direction == Direction::Up;
+  // Up: step k is the riser below level k and level k's tread (k >= 1).
+  // Down: step k is level k's tread and the riser below it (k < n - 1).
+  const size_t first = up ? 1 : 0, last = up ? L.size() : L.size() - 1;
+  for (size_t k = first; k < last && L.size() >= 2; ++k) {
+    const Level& tread = L[k];
+    const Level& below = up ? L[k - 1] : L[k + 1];
+    Step s;
+    s.tread_plane = tread.plane;
+    s.riser_height_m = tread.z - below.z;
+    float nosing_s = up ? tread.s_min : tread.s_max;
+    s.riser_plane = find_riser(ps, nosing_s, below.z, tread.z);
+    // The riser's face is the better estimate: the tread's edge cells are lost at the corner.
+    if (s.riser_plane >= 0) nosing_s = ps.extents[s.riser_plane].s_mean;
+    s.nosing_m = ps.to_camera(nosing_s, 0.5f * (tread.t_min + tread.t_max), tread.z).cast<double>();
+    s.tread_depth_m = tread.s_max - tread.s_min;
+    s.width_m = tread.t_max - tread.t_min;
+    steps.push_back(s);
+  }
+  return steps;
+}
+
+}  // namespace stairs

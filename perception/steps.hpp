@@ -1,0 +1,32 @@
+// Stage 6a: tread levels from the planes and steps from a chain of levels.
+#pragma once
+
+#include "perception/plane_geometry.hpp"
+
+#include <vector>
+
+namespace stairs {
+
+// A horizontal plane as a stair level (stair-aligned extents, m).
+struct Level {
+  int plane = -1;
+  float z = 0, s_min = 0, s_max = 0, t_min = 0, t_max = 0;
+};
+
+// Levels of the tread planes, lowest first.
+std::vector<Level> tread_levels(const PlaneSet& planes);
+
+// A staircase hypothesis: a chain of levels in walking order (`Up`: floor
+// first then each higher tread; `Down`: the level the camera looks from first).
+struct StairChain {
+  Direction direction = Direction::None;
+  std::vector<Level> levels;
+  double deviation = 0;  // summed relative DIN deviation, lower is better
+  int steps() const { return levels.empty() ? 0 : static_cast<int>(levels.size()) - 1; }
+};
+
+// Steps of a chain, nearest first, with visible tread extents (reconstruction
+// corrects them) and the matching segmented riser plane when there is one.
+std::vector<Step> steps_from_chain(const PlaneSet& planes, const StairChain& chain);
+
+}  // namespace stairs

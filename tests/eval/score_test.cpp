@@ -1,0 +1,209 @@
+#include "tools/score.hpp"
+
+#include "fixtures.hpp"
+
+#include <gtest/gtest.h>
+
+namespace stairs::eval {
+namespace {
+
+using namespace test;
+
+struct FabricatedRun {
+  GroundTruth truth = straight_stair();
+  std::vector<FrameResult> frames;
+  std::vector<Flight> model = truth.flights;
+
+  FabricatedRun() {
+    const double xs[] = {-2.0, -1.6, -1.2};
+    for (double x : xs) {
+      FrameResult f;
+      f.truth = camera_frame(x, 0.1, 1.0, -35.0);
+      f.camera.valid = true;
+      f.camera.pitch_deg = -35.0;
+      f.camera.height_m = 1.0;
+      f.steps = perfect_detections(truth, *f.truth);
+      f.latency = {{"perception", 5.0}, {"tracker", 1.0}};
+      frames.push_back(f);
+    }
+  }
+  Score score() const { return score_run(frames, &model, truth); }
+};
+
+TEST(EvalScore, PerfectResultScoresFullAndZeroError) {
+  const Score s = FabricatedRun().score();
+  EXPECT_EQ(s.frames_scored, 3);
+  EXPECT_EQ(s.visible_steps, 3 * kSteps);
+  ASSERT_TRUE(s.frame_step_detection);
+  EXPECT_DOUBLE_EQ(*s.frame_step_detection, 1.0);
+  EXPECT_EQ(s.frame_false_steps, 0);
+  EXPECT_TRUE(s.model_scored);
+  EXPECT_EQ(s.model_steps_detected, kSteps);
+  EXPECT_EQ(s.model_steps_real, kSteps);
+  EXPECT_EQ(s.model_false_steps, 0);
+  EXPECT_EQ(s.model_step_offset, 0);
+  EXPECT_EQ(s.riser_error_cm.n, kSteps);         // the landing's riser counts
+  EXPECT_EQ(s.tread_error_cm.n, kSteps - 1);     // its depth does not
+  EXPECT_NEAR(*s.riser_error_cm.mean_signed, 0.0, 1e-9);
+  EXPECT_NEAR(*s.riser_error_cm.mean_abs, 0.0, 1e-9);
+  EXPECT_NEAR(*s.tread_error_cm.mean_abs, 0.0, 1e-9);
+  EXPECT_EQ(s.pose_frames_valid, 3);
+  EXPECT_NEAR(*s.pitch_error_deg.mean_abs, 0.0, 1e-9);
+  EXPECT_NEAR(*s.roll_error_deg.mean_abs, 0.0, 1e-9);
+  EXPECT_NEAR(*s.height_error_cm.mean_abs, 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(s.latency_ms.at("perception").median_ms, 5.0);
+}
+
+TEST(EvalScore, DroppedStepShowsUpExactly) {
+  FabricatedRun run;
+  for (auto& f : run.frames) f.steps.erase(f.steps.begin() + 2);
+  run.model[0].steps.erase(run.model[0].steps.begin() + 2);
+  const Score s = run.score();
+  EXPECT_DOUBLE_EQ(*s.frame_step_detection, 12.0 / 15.0);
+  EXPECT_EQ(s.frame_false_steps, 0);
+  EXPECT_EQ(s.model_steps_detected, kSteps - 1);
+  EXPECT_EQ(s.model_steps_real, kSteps);
+  EXPECT_EQ(s.model_false_steps, 0);
+}
+
+TEST(EvalScore, RiserBiasShowsUpExactly) {
+  FabricatedRun run;
+  for (Step& st : run.model[0].steps) st.riser_height_m = *st.riser_height_m + 0.02;
+  run.model[0].steps.back().tread_depth_m = 0.5;  // a half-seen landing is no tread error
+  const Score s = run.score();
+  EXPECT_NEAR(*s.riser_error_cm.mean_signed, 2.0, 1e-9);
+  EXPECT_NEAR(*s.riser_error_cm.mean_abs, 2.0, 1e-9);
+  EXPECT_NEAR(*s.tread_error_cm.mean_signed, 0.0, 1e-9);
+  EXPECT_NEAR(*s.tread_error_cm.mean_abs, 0.0, 1e-9);
+}
+
+TEST(EvalScore, MeanAbsoluteAndSignedDiffer) {
+  FabricatedRun run;
+  run.model[0].steps[0].tread_depth_m = kTread + 0.01;
+  run.model[0].steps[1].tread_depth_m = kTread - 0.03;
+  const Score s = run.score();
+  EXPECT_NEAR(*s.tread_error_cm.mean_signed, -2.0 / 4, 1e-9);
+  EXPECT_NEAR(*s.tread_error_cm.mean_abs, 4.0 / 4, 1e-9);
+}
+
+TEST(EvalScore, FalseStepsCountedPerFrameAndInModel) {
+  FabricatedRun run;
+  Step bogus;
+  bogus.nosing_m = {6.0, 0.0, 0.5};
+  run.frames[1].steps.push_back(bogus);
+  run.model[0].steps.push_back(bogus);  // 6 m along x: no real step there
+  const Score s = run.score();
+  EXPECT_EQ(s.frame_false_steps, 1);
+  EXPECT_EQ(s.frames_with_false_steps, 1);
+  EXPECT_DOUBLE_EQ(*s.frame_step_detection, 1.0);
+  EXPECT_EQ(s.model_false_steps, 1);
+  EXPECT_EQ(s.model_steps_detected, kSteps);
+}
+
+TEST(EvalScore, MatchToleranceIsHalfTreadAndHalfRiser) {
+  FabricatedRun run;
+  auto& steps = run.frames[0].steps;
+  steps[0].nosing_m.x() += 0.5 * kTread - 1e-6;  // inside
+  steps[1].nosing_m.z() += 0.5 * kRiser + 1e-3;  // outside
+  const Score s = run.score();
+  EXPECT_EQ(s.frame_steps_matched, 3 * kSteps - 1);
+  EXPECT_EQ(s.frame_false_steps, 1);
+}
+
+TEST(EvalScore, EachRealStepMatchesAtMostOnce) {
+  FabricatedRun run;
+  run.frames[0].steps.push_back(run.frames[0].steps[0]);  // a duplicate detection
+  const Score s = run.score();
+  EXPECT_EQ(s.frame_steps_matched, 3 * kSteps);
+  EXPECT_EQ(s.frame_false_steps, 1);
+}
+
+TEST(EvalScore, ModelAlignedByWholeStepOffset) {
+  FabricatedRun run;
+  // The tracker put its origin on real step 1 and never saw step 0.
+  auto& steps = run.model[0].steps;
+  steps.erase(steps.begin());
+  for (Step& st : steps) st.nosing_m -= Eigen::Vector3d(kTread, 0.0, kRiser);
+  const Score s = run.score();
+  EXPECT_EQ(s.model_step_offset, 1);
+  EXPECT_EQ(s.model_steps_detected, kSteps - 1);
+  EXPECT_EQ(s.model_false_steps, 0);
+  EXPECT_NEAR(*s.riser_error_cm.mean_abs, 0.0, 1e-9);
+}
+
+TEST(EvalScore, LandingDecidesAmongEquallyGoodOffsets) {
+  FabricatedRun run;
+  // The tracker saw the top three steps, landing included, with its origin on
+  // real step 2: on this uniform flight offsets 0, 1 and 2 all match three.
+  auto& steps = run.model[0].steps;
+  steps.erase(steps.begin(), steps.begin() + 2);
+  for (Step& st : steps) st.nosing_m -= Eigen::Vector3d(2 * kTread, 0.0, 2 * kRiser);
+  const Score s = run.score();
+  EXPECT_EQ(s.model_step_offset, 2);
+  EXPECT_EQ(s.model_steps_detected, 3);
+  EXPECT_EQ(s.tread_error_cm.n, 2);
+  EXPECT_NEAR(*s.tread_error_cm.mean_abs, 0.0, 1e-9);
+}
+
+TEST(EvalScore, PoseErrorsOverValidFramesOnly) {
+  FabricatedRun run;
+  run.frames[0].camera.pitch_deg = -34.0;
+  run.frames[0].camera.roll_deg = -0.5;
+  run.frames[0].camera.height_m = 1.03;
+  run.frames[1].camera.height_m.reset();  // unknown height: not scored
+  run.frames[2].camera.valid = false;
+  run.frames[2].camera.pitch_deg = 80.0;  // ignored: not valid
+  const Score s = run.score();
+  EXPECT_EQ(s.pose_frames_valid, 2);
+  EXPECT_NEAR(*s.pitch_error_deg.mean_abs, 0.5, 1e-9);
+  EXPECT_NEAR(*s.roll_error_deg.mean_abs, 0.25, 1e-9);
+  EXPECT_EQ(s.height_error_cm.n, 1);
+  EXPECT_NEAR(*s.height_error_cm.mean_abs, 3.0, 1e-9);
+}
+
+TEST(EvalScore, NoModelLeavesModelScoresUnset) {
+  FabricatedRun run;
+  const Score s = score_run(run.frames, nullptr, run.truth);
+  EXPECT_FALSE(s.model_scored);
+  EXPECT_FALSE(s.riser_error_cm.mean_abs);
+}
+
+TEST(EvalScore, GravityFrameFollowsTrueCameraPose) {
+  const GroundTruth gt = straight_stair();
+  const GroundTruthFrame fr = camera_frame(-1.5, 0.3, 1.1, -40.0, 20.0);
+  const Step& s = gt.flights[0].steps[3];
+  // At lateral coordinate 0 a line crossing a heading yawed by psi lies
+  // (nx - x) / cos(psi) ahead (worked out by hand).
+  const Eigen::Vector3d n = true_nosing_in_gravity_frame(s, fr, 0.0);
+  EXPECT_NEAR(n.x(), (s.nosing_m.x() + 1.5) / std::cos(20.0 * M_PI / 180.0), 1e-9);
+  EXPECT_NEAR(n.y(), 0.0, 1e-9);
+  EXPECT_NEAR(n.z(), s.nosing_m.z() - 1.1, 1e-9);
+}
+
+TEST(EvalScore, DescendingCameraMatchesToo) {
+  GroundTruth gt = straight_stair();
+  // Camera above the landing looking down the flight (-x).
+  const GroundTruthFrame fr = camera_frame(1.8, 0.0, 0.9 + 1.7, -40.0, 180.0);
+  std::vector<Step> det;
+  for (const Step& s : gt.flights[0].steps) {
+    Step d = s;
+    d.nosing_m = {fr.position_m.x() - s.nosing_m.x(), 0.0, s.nosing_m.z() - fr.position_m.z()};
+    det.push_back(d);
+  }
+  const auto m = match_frame_steps(det, real_steps(gt), fr);
+  ASSERT_EQ(m.size(), size_t(kSteps));
+  for (const StepMatch& x : m) EXPECT_EQ(x.detected, x.real);
+}
+
+TEST(EvalScore, LatencyMedianAndNearestRankP95) {
+  std::vector<double> v;
+  for (int i = 20; i >= 1; --i) v.push_back(i);
+  const LatencyStats s = latency_stats(v);
+  EXPECT_EQ(s.n, 20);
+  EXPECT_DOUBLE_EQ(s.median_ms, 10.5);
+  EXPECT_DOUBLE_EQ(s.p95_ms, 19.0);
+  EXPECT_DOUBLE_EQ(latency_stats({3.0, 1.0, 2.0}).median_ms, 2.0);
+}
+
+}  // namespace
+}  // namespace stairs::eval

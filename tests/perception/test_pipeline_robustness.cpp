@@ -1,0 +1,80 @@
+// Valid output on every frame, whatever the input: no crash, no NaN.
+#include "perception/pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace stairs {
+namespace {
+
+void expect_finite(const Observation& o) {
+  EXPECT_TRUE(std::isfinite(o.camera.pitch_deg));
+  EXPECT_TRUE(std::isfinite(o.camera.roll_deg));
+  EXPECT_TRUE(std::isfinite(o.camera.height_m.value_or(0)));
+  EXPECT_TRUE(std::isfinite(o.camera.distance_m.value_or(0)));
+  EXPECT_TRUE(o.camera.gravity_rotation.coeffs().allFinite());
+  for (const Plane& p : o.planes) {
+    EXPECT_TRUE(p.normal.allFinite() && p.centroid.allFinite());
+    for (const auto& c : p.corners) EXPECT_TRUE(c.allFinite());
+    for (const auto& q : p.points) EXPECT_TRUE(q.allFinite());
+  }
+  for (const Step& s : o.steps) EXPECT_TRUE(s.nosing_m.allFinite());
+  EXPECT_TRUE(o.steps.empty() || o.steps.size() >= 2u);
+  EXPECT_EQ(o.direction == Direction::None, o.steps.empty());
+}
+
+DepthImage frame(int w, int h, uint16_t value) {
+  DepthImage img;
+  img.K = {w, h, 525.0 * w / 640, 525.0 * w / 640, w / 2.0, h / 2.0};
+  img.depth.assign(static_cast<size_t>(w) * h, value);
+  return img;
+}
+
+TEST(PerceptionRobustness, ZeroAndConstantFrames) {
+  Pipeline p;
+  for (uint16_t v : {0, 1, 1000, 65535}) {
+    const Observation o = p.process(frame(640, 480, v));
+    expect_finite(o);
+    EXPECT_EQ(o.direction, Direction::None);
+  }
+}
+
+TEST(PerceptionRobustness, TinyAndMalformedFrames) {
+  Pipeline p;
+  for (int w : {0, 1, 2, 3, 7})
+    for (int h : {0, 1, 5}) expect_finite(p.process(frame(w, h, 1500)));
+  DepthImage bad = frame(64, 48, 1500);
+  bad.depth.resize(10);  // size mismatch
+  Observation o = p.process(bad);
+  expect_finite(o);
+  EXPECT_FALSE(o.camera.valid);
+  EXPECT_FALSE(o.status.empty());
+  bad = frame(64, 48, 1500);
+  bad.K.fx = std::nan("");
+  EXPECT_FALSE(p.process(bad).camera.valid);
+  bad = frame(64, 48, 1500);
+  bad.depth_scale = -1;
+  EXPECT_FALSE(p.process(bad).camera.valid);
+}
+
+TEST(PerceptionRobustness, RandomNoiseAndHugeValues) {
+  Pipeline p;
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 5; ++trial) {
+    DepthImage img = frame(640, 480, 0);
+    std::uniform_int_distribution<int> d(0, trial % 2 ? 65535 : 4000);
+    for (auto& v : img.depth) v = static_cast<uint16_t>(d(rng));
+    const Observation o = p.process(img);
+    expect_finite(o);
+    EXPECT_EQ(o.direction, Direction::None);
+  }
+  DepthImage img = frame(320, 240, 0);
+  img.depth_scale = 1000.0;  // kilometres per unit: everything beyond range
+  for (auto& v : img.depth) v = 60000;
+  expect_finite(p.process(img));
+}
+
+}  // namespace
+}  // namespace stairs

@@ -1,0 +1,82 @@
+// Real Kinect v1/v2 frames (shared/realdata): each must give a plausible
+// observation. Reference values are the converter's levelled measurements
+// in SOURCE.md (not ground truth), so the bounds are loose.
+#include "common/sequence.hpp"
+#include "perception/pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+namespace stairs {
+namespace {
+
+const std::string kRealdata = "/work/shared/realdata/";
+
+void print(const std::string& name, size_t i, const Observation& o) {
+  std::printf("%s[%zu]: valid=%d pitch=%.1f roll=%.1f height=%.3f dir=%d steps=%zu latency=%.2fms\n", name.c_str(), i,
+              o.camera.valid, o.camera.pitch_deg, o.camera.roll_deg, o.camera.height_m.value_or(-1),
+              static_cast<int>(o.direction), o.steps.size(), o.latency_ms);
+  for (const Step& s : o.steps)
+    std::printf("   riser=%.3f tread=%.3f landing=%d nosing=(%.2f %.2f %.2f)\n", s.riser_height_m.value_or(-1),
+                s.tread_depth_m.value_or(-1), s.landing, s.nosing_m.x(), s.nosing_m.y(), s.nosing_m.z());
+}
+
+// Angle between the up vectors of two (pitch, roll) pairs: at steep pitch the
+// roll angle alone is ill-conditioned (the horizontal part of up is small).
+double up_angle_deg(double p1, double r1, double p2, double r2) {
+  auto up = [](double p, double r) {
+    p *= M_PI / 180;
+    r *= M_PI / 180;
+    return Eigen::Vector3d(-std::cos(p) * std::sin(r), -std::cos(p) * std::cos(r), std::sin(p));
+  };
+  return std::acos(std::clamp(up(p1, r1).dot(up(p2, r2)), -1.0, 1.0)) * 180 / M_PI;
+}
+
+struct Expect {
+  double pitch_deg, roll_deg, height_m, riser_m;
+  size_t min_steps;
+};
+
+void check(const std::string& dir, size_t frame, const Expect& e) {
+  if (!std::filesystem::exists(kRealdata + dir)) GTEST_SKIP() << "no " << kRealdata << dir;
+  SequenceReader seq(kRealdata + dir);
+  Pipeline pipeline;
+  const Observation o = pipeline.process(seq.read(frame));
+  print(dir, frame, o);
+  ASSERT_TRUE(o.camera.valid);
+  EXPECT_LE(up_angle_deg(o.camera.pitch_deg, o.camera.roll_deg, e.pitch_deg, e.roll_deg), 1.5);
+  ASSERT_TRUE(o.camera.height_m.has_value());
+  EXPECT_NEAR(*o.camera.height_m, e.height_m, 0.03);
+  ASSERT_GE(o.steps.size(), e.min_steps);
+  EXPECT_EQ(o.direction, Direction::Up);
+  for (const Step& s : o.steps) {
+    ASSERT_TRUE(s.riser_height_m.has_value());
+    EXPECT_NEAR(*s.riser_height_m, e.riser_m, 0.03);
+  }
+}
+
+// Only 1.5 steps are in view: the lower tread, one riser, the next tread.
+TEST(PerceptionRealdata, Kinect1ThesisPose) {
+  const std::string dir = "kinect1_thesis_up";
+  if (!std::filesystem::exists(kRealdata + dir)) GTEST_SKIP();
+  SequenceReader seq(kRealdata + dir);
+  Pipeline pipeline;
+  for (size_t i = 0; i < seq.size(); ++i) {
+    const Observation o = pipeline.process(seq.read(i));
+    print(dir, i, o);
+    ASSERT_TRUE(o.camera.valid);
+    EXPECT_LE(up_angle_deg(o.camera.pitch_deg, o.camera.roll_deg, -51.0, -4.0), 1.5);
+    ASSERT_TRUE(o.camera.height_m.has_value());
+    EXPECT_NEAR(*o.camera.height_m, 0.648, 0.03);
+  }
+}
+
+TEST(PerceptionRealdata, Kinect2LookingDown) { check("kinect2_lab_up", 0, {-76.2, 13.0, 0.964, 0.10, 2}); }
+TEST(PerceptionRealdata, Kinect2WholeFlight) { check("kinect2_lab_up", 1, {-24.3, 2.4, 0.549, 0.10, 3}); }
+
+}  // namespace
+}  // namespace stairs

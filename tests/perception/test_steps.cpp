@@ -1,0 +1,107 @@
+#include "perception/grammar.hpp"
+#include "perception/pipeline.hpp"
+#include "perception/reconstruction.hpp"
+#include "synthetic.hpp"
+
+#include <gtest/gtest.h>
+
+namespace stairs {
+namespace {
+
+Level level(float z, float s_min, float s_max) { return {-1, z, s_min, s_max, -0.5f, 0.5f}; }
+
+TEST(PerceptionGrammar, DinBoundsWithTolerance) {
+  const PerceptionConfig c;
+  EXPECT_TRUE(din_riser_ok(0.17, c));
+  EXPECT_TRUE(din_riser_ok(0.09, c));   // 0.14 - 40 %
+  EXPECT_FALSE(din_riser_ok(0.07, c));
+  EXPECT_FALSE(din_riser_ok(0.30, c));  // 0.20 + 40 % = 0.28
+  EXPECT_TRUE(din_tread_ok(0.28, c));
+  EXPECT_FALSE(din_tread_ok(0.10, c));
+  EXPECT_TRUE(din_rule_ok(0.17, 0.28, c));
+  EXPECT_FALSE(din_rule_ok(0.05, 0.2, c));
+}
+
+TEST(PerceptionGrammar, AscendingChainFromTheFloor) {
+  const std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), level(-0.83f, 1.5f, 1.78f), level(-0.66f, 1.78f, 2.06f),
+                                     level(-0.49f, 2.06f, 2.2f)};
+  const StairChain ch = best_chain(levels, PerceptionConfig{});
+  EXPECT_EQ(ch.direction, Direction::Up);
+  EXPECT_EQ(ch.steps(), 3);
+}
+
+TEST(PerceptionGrammar, DescendingChainFromTheLanding) {
+  // Going down each lower tread is seen beyond the nosing above it.
+  const std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), level(-1.17f, 1.6f, 1.78f), level(-1.34f, 1.9f, 2.06f),
+                                     level(-1.51f, 2.2f, 3.5f)};
+  const StairChain ch = best_chain(levels, PerceptionConfig{});
+  EXPECT_EQ(ch.direction, Direction::Down);
+  EXPECT_EQ(ch.steps(), 3);
+  PlaneSet ps;
+  std::vector<Step> steps = steps_from_chain(ps, ch);
+  ASSERT_EQ(steps.size(), 3u);
+  reconstruct(ps, ch, steps, PerceptionConfig{});
+  // Occluded tread depths come from nosing to nosing; risers are rebuilt.
+  EXPECT_NEAR(*steps[1].tread_depth_m, 0.28, 1e-5);
+  EXPECT_NEAR(*steps[2].tread_depth_m, 0.28, 1e-5);
+  EXPECT_EQ(ps.planes.size(), 3u);
+  for (const Step& s : steps) {
+    ASSERT_GE(s.riser_plane, 0);
+    EXPECT_EQ(ps.planes[s.riser_plane].source, PlaneSource::Reconstructed);
+    EXPECT_NEAR(*s.riser_height_m, 0.17, 1e-5);
+  }
+}
+
+TEST(PerceptionGrammar, NoChainOnImplausibleLevels) {
+  const PerceptionConfig c;
+  // A table top 0.75 m above the floor.
+  EXPECT_EQ(best_chain({level(-1.0f, 0.5f, 3.0f), level(-0.25f, 1.5f, 2.3f)}, c).steps(), 0);
+  // Levels 3 cm apart: no riser.
+  EXPECT_EQ(best_chain({level(-1.0f, 0.5f, 1.5f), level(-0.97f, 1.5f, 1.8f)}, c).steps(), 0);
+}
+
+TEST(PerceptionSteps, SyntheticAscendingStairsEndToEnd) {
+  Pipeline p;
+  const Observation o = p.process(test::render_stairs(640, 480, -35, 0, 1.0, 4, 1.3));
+  ASSERT_TRUE(o.camera.valid);
+  EXPECT_EQ(o.direction, Direction::Up);
+  ASSERT_GE(o.steps.size(), 3u);
+  for (size_t k = 0; k < o.steps.size(); ++k) {
+    EXPECT_NEAR(*o.steps[k].riser_height_m, 0.17, 0.02);
+    // Nosing k at x = 1.3 + k * 0.28, z = -1 + (k + 1) * 0.17.
+    EXPECT_NEAR(o.steps[k].nosing_m.x(), 1.3 + k * 0.28, 0.04);
+    EXPECT_NEAR(o.steps[k].nosing_m.z(), -1.0 + (k + 1) * 0.17, 0.03);
+    if (k + 1 < o.steps.size()) {
+      EXPECT_NEAR(*o.steps[k].tread_depth_m, 0.28, 0.03);
+    }
+  }
+  ASSERT_TRUE(o.camera.height_m.has_value());
+  EXPECT_NEAR(*o.camera.height_m, 1.0, 0.01);
+  ASSERT_TRUE(o.camera.distance_m.has_value());
+  EXPECT_NEAR(*o.camera.distance_m, 1.3, 0.04);
+  // Tread/riser samples are capped and in the gravity frame.
+  int treads = 0;
+  for (const Plane& pl : o.planes) {
+    EXPECT_LE(pl.points.size(), 1024u);
+    if (pl.kind == PlaneKind::Tread) {
+      ++treads;
+      for (const auto& q : pl.points) EXPECT_NEAR(q.z(), pl.centroid.z(), 0.03);
+    }
+  }
+  EXPECT_GE(treads, 4);
+  const std::vector<std::string> names = {"normals", "region_growing", "gravity", "plane_geometry",
+                                          "steps",   "grammar",        "reconstruction"};
+  ASSERT_EQ(o.stages.size(), names.size());
+  for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(o.stages[i].name, names[i]);
+}
+
+TEST(PerceptionSteps, SingleCurbIsNoStaircase) {
+  Pipeline p;
+  const Observation o = p.process(test::render_stairs(640, 480, -35, 0, 1.0, 1, 1.3, 0.15, 5.0));
+  EXPECT_TRUE(o.camera.valid);
+  EXPECT_EQ(o.direction, Direction::None);
+  EXPECT_TRUE(o.steps.empty());
+}
+
+}  // namespace
+}  // namespace stairs

@@ -1,0 +1,233 @@
+// The tracker on hand-built observations of known staircases (see
+// synthetic_stair.hpp): the model must hold every real step, with riser and
+// tread errors under 1 cm and no false steps, at slow and walking speed, with
+// dropped frames and gaps, ascending, descending and over two flights.
+#include "synthetic_stair.hpp"
+#include "tracker/tracker.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+using namespace stairs;
+using namespace stairs::synthetic;
+
+namespace {
+
+struct Walk {
+  StairModel model;
+  int64_t rejected = 0;
+  int frames = 0;
+};
+
+// Every `keep`-th frame; frames in [gap_from, gap_to) are missing.
+Walk walk_stair(const StairGeometry& g, bool ascending, double speed, int keep = 1, int gap_from = -1, int gap_to = -1,
+        uint64_t seed = 1) {
+  ObservationMaker maker(g, seed);
+  Tracker tracker;
+  const auto cams = walk(g, ascending, speed, 30.0);
+  Walk r;
+  for (size_t k = 0; k < cams.size(); k += keep) {
+    if (static_cast<int>(k) >= gap_from && static_cast<int>(k) < gap_to) continue;
+    tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+    ++r.frames;
+  }
+  r.model = tracker.model();
+  r.rejected = tracker.rejected_registrations();
+  return r;
+}
+
+void expect_accurate(const Walk& r, const StairGeometry& g, const char* name) {
+  const Accuracy a = score(r.model, g);
+  std::printf("[%s] frames %d fused %d rejected %lld: steps %d/%d, false %d, riser %.2f cm, tread %.2f cm\n", name,
+              r.frames, r.model.observations_fused, static_cast<long long>(r.rejected), a.matched, a.real_steps,
+              a.false_steps, a.riser_abs_cm, a.tread_abs_cm);
+  EXPECT_EQ(a.matched, a.real_steps) << name;
+  EXPECT_EQ(a.false_steps, 0) << name;
+  EXPECT_LE(a.riser_abs_cm, 1.0) << name;
+  EXPECT_LE(a.tread_abs_cm, 1.0) << name;
+}
+
+const StairGeometry kStair = make_stair(9, 0.17, 0.28, 1.5);
+const StairGeometry kTwoFlights = make_stair(12, 0.17, 0.28, 1.5, 5, 1.2);
+
+}  // namespace
+
+TEST(TrackerAccuracy, AscendingSlow) { expect_accurate(walk_stair(kStair, true, 0.3), kStair, "up 0.3 m/s"); }
+TEST(TrackerAccuracy, AscendingWalking) { expect_accurate(walk_stair(kStair, true, 0.6), kStair, "up 0.6 m/s"); }
+TEST(TrackerAccuracy, AscendingWalkingEveryOtherFrame) {
+  expect_accurate(walk_stair(kStair, true, 0.6, 2), kStair, "up 0.6 m/s 15 fps");
+}
+TEST(TrackerAccuracy, AscendingWalkingOneSecondGap) {
+  const Walk r = walk_stair(kStair, true, 0.6, 1, 60, 90);
+  expect_accurate(r, kStair, "up 0.6 m/s 1 s gap");
+}
+TEST(TrackerAccuracy, DescendingSlow) { expect_accurate(walk_stair(kStair, false, 0.3), kStair, "down 0.3 m/s"); }
+TEST(TrackerAccuracy, DescendingWalking) { expect_accurate(walk_stair(kStair, false, 0.6), kStair, "down 0.6 m/s"); }
+TEST(TrackerAccuracy, DescendingWalkingOneSecondGap) {
+  expect_accurate(walk_stair(kStair, false, 0.6, 1, 40, 70), kStair, "down 0.6 m/s 1 s gap");
+}
+TEST(TrackerAccuracy, TwoFlightsAscending) {
+  const Walk r = walk_stair(kTwoFlights, true, 0.6);
+  expect_accurate(r, kTwoFlights, "two flights up 0.6 m/s");
+  ASSERT_EQ(r.model.flights.size(), 2u);
+  EXPECT_TRUE(r.model.flights[0].steps.back().landing);
+}
+TEST(TrackerAccuracy, TwoFlightsDescending) {
+  expect_accurate(walk_stair(kTwoFlights, false, 0.6), kTwoFlights, "two flights down 0.6 m/s");
+}
+
+TEST(Tracker, CameraOnTheStair) {
+  ObservationMaker maker(kStair, 3);
+  Tracker tracker;
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  int checked = 0;
+  for (size_t k = 0; k < cams.size(); ++k) {
+    const StairModel& m = tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+    if (!m.camera_valid || m.flights.empty() || m.flights[0].steps.size() < kStair.riser_m.size() - 1) continue;
+    // Once the model holds the bottom step its frame is the real one.
+    if (std::abs(m.flights[0].steps[0].nosing_m.z() - kStair.nosing_z(0)) > 0.02) continue;
+    const Eigen::Vector3d& c = cams[k].position_m;
+    EXPECT_NEAR(m.camera_position_m.x(), c.x(), 0.03) << k;
+    EXPECT_NEAR(m.camera_position_m.z(), c.z(), 0.03) << k;
+    // Away from the risers, where the step beneath is unambiguous:
+    if (std::abs(std::fmod(c.x() + 10 * 0.28, 0.28)) > 0.03 && std::abs(std::fmod(c.x() + 10 * 0.28, 0.28)) < 0.25) {
+      int real = -1;
+      while (real + 1 < static_cast<int>(kStair.riser_m.size()) && kStair.nosing_x(real + 1) <= c.x()) ++real;
+      EXPECT_EQ(m.camera_step_index, real) << k;
+      EXPECT_NEAR(m.camera_height_m, c.z() - kStair.surface_z(c.x()), 0.03) << k;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 20);
+}
+
+TEST(Tracker, StepsCountConfirmations) {
+  const Walk r = walk_stair(kStair, true, 0.6);
+  for (const auto& f : r.model.flights)
+    for (const auto& s : f.steps) EXPECT_GE(s.confirmations, 2);
+  EXPECT_GT(r.model.flights[0].steps[0].confirmations, 10);
+  EXPECT_GT(r.model.registration_inlier_ratio, 0.5);
+  EXPECT_GT(r.model.registration_rmse_m, 0.0);
+  EXPECT_LT(r.model.registration_rmse_m, 0.03);
+}
+
+TEST(Tracker, OutOfOrderObservationsAreDroppedAndCounted) {
+  ObservationMaker maker(kStair, 5);
+  Tracker tracker;
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  for (int k = 0; k < 20; ++k) tracker.update(maker.make(cams[k], k * 33333));
+  const int fused = tracker.model().observations_fused;
+  const StairModel& m = tracker.update(maker.make(cams[5], 5 * 33333));
+  EXPECT_EQ(tracker.dropped_out_of_order(), 1);
+  EXPECT_EQ(m.observations_fused, fused);
+  tracker.update(maker.make(cams[20], 19 * 33333));  // same utime as the last one
+  EXPECT_EQ(tracker.dropped_out_of_order(), 2);
+  tracker.update(maker.make(cams[20], 20 * 33333));
+  EXPECT_EQ(tracker.model().observations_fused, fused + 1);
+}
+
+TEST(Tracker, EmptyObservationsLoseThenResetTheModel) {
+  TrackerConfig c;
+  c.lost_after_s = 0.5;
+  c.reset_after_s = 2.0;
+  ObservationMaker maker(kStair, 6);
+  Tracker tracker(c);
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  for (int k = 0; k < 15; ++k) tracker.update(maker.make(cams[k], k * 33333));
+  ASSERT_EQ(tracker.model().state, TrackingState::Ok);
+  ASSERT_FALSE(tracker.model().flights.empty());
+  Observation empty;
+  empty.camera.valid = true;
+  empty.source_utime = 15 * 33333;
+  EXPECT_EQ(tracker.update(empty).state, TrackingState::Ok);
+  EXPECT_FALSE(tracker.model().camera_valid);
+  empty.source_utime = 14 * 33333 + 1'000'000;
+  EXPECT_EQ(tracker.update(empty).state, TrackingState::Lost);
+  EXPECT_FALSE(tracker.model().flights.empty());  // lost is not forgotten
+  empty.source_utime = 14 * 33333 + 2'100'000;
+  EXPECT_EQ(tracker.update(empty).state, TrackingState::Lost);
+  EXPECT_FALSE(tracker.model().flights.empty());  // kept until a stair is in view again
+  EXPECT_EQ(tracker.resets(), 0);
+  // A stair in view again after more than reset_after_s: a new model from it.
+  const StairModel& m = tracker.update(maker.make(cams[150], 14 * 33333 + 2'200'000));
+  EXPECT_EQ(tracker.resets(), 1);
+  EXPECT_EQ(m.state, TrackingState::Ok);
+  EXPECT_EQ(m.observations_fused, 1);
+}
+
+TEST(Tracker, ResetForgetsTheModel) {
+  ObservationMaker maker(kStair, 7);
+  Tracker tracker;
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  for (int k = 0; k < 10; ++k) tracker.update(maker.make(cams[k], k * 33333));
+  ASSERT_GT(tracker.model().observations_fused, 0);
+  tracker.reset();
+  EXPECT_EQ(tracker.model().observations_fused, 0);
+  EXPECT_TRUE(tracker.model().flights.empty());
+  EXPECT_EQ(tracker.model().state, TrackingState::None);
+}
+
+TEST(TrackerConfig, LoadsJsonAndNamesUnknownKeys) {
+  const std::string path = std::string(STAIRS_BINARY_DIR) + "/tracker_config_test.json";
+  std::ofstream(path) << R"({"reset_after_s": 3.5, "min_confirmations": 3})";
+  const TrackerConfig c = load_tracker_config(path);
+  EXPECT_DOUBLE_EQ(c.reset_after_s, 3.5);
+  EXPECT_EQ(c.min_confirmations, 3);
+  EXPECT_DOUBLE_EQ(c.icp_max_distance_m, 1.0);
+  std::ofstream(path) << R"({"reset_after_seconds": 3.5})";
+  try {
+    load_tracker_config(path);
+    FAIL() << "unknown key accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("reset_after_seconds"), std::string::npos) << e.what();
+  }
+  std::ofstream(path) << R"({"min_confirmations": "two"})";
+  EXPECT_THROW(load_tracker_config(path), std::runtime_error);
+  std::ofstream(path) << R"({"icp_min_distance_m": 2.0})";
+  EXPECT_THROW(load_tracker_config(path), std::runtime_error);
+}
+
+TEST(Tracker, RejectsARegistrationThatJumpsAwayFromTheMotionPrior) {
+  ObservationMaker maker(kStair, 8);
+  Tracker tracker;
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  for (size_t k = 0; k < cams.size(); ++k) {
+    Observation obs = maker.make(cams[k], static_cast<int64_t>(k) * 33333);
+    if (k == 100 && !obs.steps.empty()) {
+      // A whole observation 20 cm off: no camera moves that far in 33 ms.
+      const Eigen::Vector3f off(0.2f, 0.0f, 0.0f);
+      for (auto& s : obs.steps) s.nosing_m += off.cast<double>();
+      for (auto& p : obs.planes) {
+        p.centroid += off;
+        for (auto& c : p.corners) c += off;
+        for (auto& q : p.points) q += off;
+      }
+      const int fused = tracker.model().observations_fused;
+      const Eigen::Vector3d before = tracker.model().camera_position_m;
+      EXPECT_FALSE(tracker.update(obs).camera_valid) << (tracker.model().camera_position_m - before).transpose();
+      EXPECT_EQ(tracker.model().observations_fused, fused);
+      continue;
+    }
+    tracker.update(obs);
+  }
+  EXPECT_EQ(tracker.rejected_registrations(), 1);
+  const Accuracy a = score(tracker.model(), kStair);
+  EXPECT_EQ(a.matched, a.real_steps);
+  EXPECT_EQ(a.false_steps, 0);
+}
+
+TEST(Tracker, ModelStepsAreCapped) {
+  TrackerConfig c;
+  c.max_model_steps = 4;
+  ObservationMaker maker(kStair, 9);
+  Tracker tracker(c);
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  for (size_t k = 0; k < cams.size(); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  size_t steps = 0;
+  for (const auto& f : tracker.model().flights) steps += f.steps.size();
+  EXPECT_GE(steps, 2u);
+  EXPECT_LE(steps, 4u);
+  EXPECT_LE(tracker.model().planes.size(), 8u);
+}

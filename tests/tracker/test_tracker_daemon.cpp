@@ -1,0 +1,121 @@
+// stairs-tracker as a real subprocess over UDP multicast on loopback:
+// observations in, one model out per observation, a garbage message counted
+// as invalid, the daemon survives it and stops cleanly on SIGTERM.
+#include "common/lcm_bridge.hpp"
+#include "synthetic_stair.hpp"
+
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <string>
+
+using namespace stairs;
+
+namespace {
+
+const std::string kUrl = "udpm://239.255.76.67:7689?ttl=0&recv_buf_size=4194304";
+
+bool multicast_loopback_works() {
+  lcm::LCM lcm(kUrl);
+  if (!lcm.good()) return false;
+  bool got = false;
+  struct H {
+    bool* got;
+    void on(const lcm::ReceiveBuffer*, const std::string&) { *got = true; }
+  } h{&got};
+  lcm.subscribe("STAIRS_TRK_PROBE", &H::on, &h);
+  const uint8_t byte = 1;
+  for (int i = 0; i < 10 && !got; ++i) {
+    lcm.publish("STAIRS_TRK_PROBE", &byte, 1);
+    lcm.handleTimeout(100);
+  }
+  return got;
+}
+
+struct Received {
+  int models = 0, bad_models = 0, max_fused = 0, steps = 0;
+  int64_t invalid = 0, dropped = 0;
+  void on_model(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    stair_model_t msg;
+    StairModel m;
+    std::string error;
+    if (!decode_message(rbuf->data, rbuf->data_size, msg, error) || !from_lcm(msg, m, error)) {
+      ++bad_models;
+      return;
+    }
+    ++models;
+    max_fused = std::max(max_fused, m.observations_fused);
+    steps = 0;
+    for (const auto& f : m.flights) steps += static_cast<int>(f.steps.size());
+  }
+  void on_status(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    daemon_status_t s;
+    std::string error;
+    if (decode_message(rbuf->data, rbuf->data_size, s, error) && s.name == "stairs-tracker") {
+      invalid = s.invalid;
+      dropped = s.dropped;
+    }
+  }
+};
+
+void pump(lcm::LCM& lcm, int ms) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+  while (std::chrono::steady_clock::now() < end) lcm.handleTimeout(20);
+}
+
+}  // namespace
+
+TEST(TrackerDaemon, ObservationsInModelsOutGarbageCounted) {
+  if (!multicast_loopback_works()) {
+    if (std::system("ip route add 224.0.0.0/4 dev lo 2>/dev/null") != 0 || !multicast_loopback_works())
+      GTEST_SKIP() << "UDP multicast does not loop back here (run as root: ip route add 224.0.0.0/4 dev lo)";
+  }
+  const std::string exe = std::string(STAIRS_BINARY_DIR) + "/bin/stairs-tracker";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    execl(exe.c_str(), exe.c_str(), "--lcm-url", kUrl.c_str(), "--observation-channel", "TRK_TEST_OBS",
+          "--model-channel", "TRK_TEST_MODEL", "--status-channel", "TRK_TEST_STATUS", "--reset-after-s", "3",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  lcm::LCM lcm(kUrl);
+  ASSERT_TRUE(lcm.good());
+  Received rx;
+  lcm.subscribe("TRK_TEST_MODEL", &Received::on_model, &rx);
+  lcm.subscribe("TRK_TEST_STATUS", &Received::on_status, &rx);
+  pump(lcm, 500);  // the daemon subscribes
+
+  const auto g = synthetic::make_stair(9, 0.17, 0.28, 1.5);
+  synthetic::ObservationMaker maker(g, 11, 256);
+  const auto cams = synthetic::walk(g, true, 0.6, 30.0);
+  const int n = 60;
+  for (int k = 0; k < n; ++k) {
+    const stair_observation_t msg = to_lcm(maker.make(cams[k], k * 33333), k * 33333 + 1000);
+    lcm.publish("TRK_TEST_OBS", &msg);
+    if (k == 20) {
+      const std::string garbage = "not an observation at all";
+      lcm.publish("TRK_TEST_OBS", garbage.data(), static_cast<unsigned>(garbage.size()));
+    }
+    pump(lcm, 15);
+  }
+  pump(lcm, 1500);  // the last models and a status message arrive
+
+  EXPECT_EQ(rx.models, n);
+  EXPECT_EQ(rx.bad_models, 0);
+  EXPECT_GT(rx.max_fused, n / 2);
+  EXPECT_GE(rx.steps, 4);
+  EXPECT_EQ(rx.invalid, 1);
+  EXPECT_EQ(waitpid(pid, nullptr, WNOHANG), 0) << "the daemon died";
+
+  kill(pid, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}

@@ -1,0 +1,96 @@
+#include "tools/result_json.hpp"
+
+#include "common/json_io.hpp"
+
+namespace stairs::eval {
+namespace {
+
+using nlohmann::json;
+
+template <typename T>
+json or_null(const std::optional<T>& v) {
+  return v ? json(*v) : json(nullptr);
+}
+
+json error_to_json(const ErrorStats& e) {
+  return {{"mean_signed", or_null(e.mean_signed)}, {"mean_abs", or_null(e.mean_abs)}, {"n", e.n}};
+}
+
+json steps_to_json(const std::vector<Step>& steps) {
+  json out = json::array();
+  for (const Step& s : steps) out.push_back(step_to_json(s));
+  return out;
+}
+
+}  // namespace
+
+const char* direction_name(Direction d) {
+  switch (d) {
+    case Direction::Up: return "up";
+    case Direction::Down: return "down";
+    default: return "none";
+  }
+}
+
+json frame_to_json(const FrameResult& f) {
+  const CameraPose& c = f.camera;
+  json camera = {{"valid", c.valid},
+                 {"pitch_deg", c.valid ? json(c.pitch_deg) : json(nullptr)},
+                 {"roll_deg", c.valid ? json(c.roll_deg) : json(nullptr)},
+                 {"height_m", c.valid ? or_null(c.height_m) : json(nullptr)},
+                 {"distance_m", c.valid ? or_null(c.distance_m) : json(nullptr)}};
+  json latency = {{"perception", nullptr}, {"tracker", nullptr}};
+  for (const StageLatency& l : f.latency) latency[l.name] = l.ms;
+  return {{"timestamp", f.timestamp_s},
+          {"camera", camera},
+          {"direction", direction_name(f.direction)},
+          {"steps", steps_to_json(f.steps)},
+          {"latency_ms", latency}};
+}
+
+json model_to_json(const StairModel& m) {
+  json flights = json::array();
+  for (const Flight& f : m.flights) flights.push_back({{"steps", steps_to_json(f.steps)}, {"width_m", f.width_m}});
+  return {{"direction", direction_name(m.direction)}, {"flights", flights}};
+}
+
+json score_to_json(const Score& s) {
+  const auto model_int = [&](int v) { return s.model_scored ? json(v) : json(nullptr); };
+  json latency = json::object();
+  for (const auto& [name, l] : s.latency_ms)
+    latency[name] = {{"median", l.median_ms}, {"p95", l.p95_ms}, {"n", l.n}};
+  return {
+      {"frames_scored", s.frames_scored},
+      {"frame_step_detection", or_null(s.frame_step_detection)},
+      {"frame_steps_matched", s.frame_steps_matched},
+      {"visible_steps", s.visible_steps},
+      {"model_steps_detected", model_int(s.model_steps_detected)},
+      {"model_steps_real", model_int(s.model_steps_real)},
+      {"model_step_offset", model_int(s.model_step_offset)},
+      {"riser_error_cm", s.model_scored ? error_to_json(s.riser_error_cm) : json(nullptr)},
+      {"tread_error_cm", s.model_scored ? error_to_json(s.tread_error_cm) : json(nullptr)},
+      {"false_steps",
+       {{"frames", s.frame_false_steps},
+        {"frames_with_false", s.frames_with_false_steps},
+        {"per_frame", s.frames_scored ? json(double(s.frame_false_steps) / s.frames_scored) : json(nullptr)},
+        {"model", model_int(s.model_false_steps)}}},
+      {"pose_frames_valid", s.pose_frames_valid},
+      {"pitch_error_deg", or_null(s.pitch_error_deg.mean_abs)},
+      {"roll_error_deg", or_null(s.roll_error_deg.mean_abs)},
+      {"height_error_cm", or_null(s.height_error_cm.mean_abs)},
+      {"latency_ms", latency}};
+}
+
+json result_to_json(const RunResult& r) {
+  json frames = json::array();
+  for (const FrameResult& f : r.frames) frames.push_back(frame_to_json(f));
+  return {{"input", r.input},
+          {"frames_total", r.frames_total},
+          {"frames_processed", r.frames_processed},
+          {"frames_invalid", r.frames_invalid},
+          {"frames", frames},
+          {"model", r.model ? model_to_json(*r.model) : json(nullptr)},
+          {"score", r.score ? score_to_json(*r.score) : json(nullptr)}};
+}
+
+}  // namespace stairs::eval

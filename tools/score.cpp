@@ -1,0 +1,246 @@
+#include "tools/score.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+namespace stairs::eval {
+namespace {
+
+struct Candidate {
+  double cost;
+  int detected;
+  int real;
+};
+
+// One-to-one assignment, nearest pair first: greedy is exact enough here
+// because the tolerances (half a step) keep candidates nearly disjoint.
+std::vector<StepMatch> assign(std::vector<Candidate> candidates, size_t n_detected, size_t n_real,
+                              double* total_cost = nullptr) {
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.cost != b.cost) return a.cost < b.cost;
+    if (a.detected != b.detected) return a.detected < b.detected;
+    return a.real < b.real;
+  });
+  std::vector<bool> used_d(n_detected, false), used_r(n_real, false);
+  std::vector<StepMatch> out;
+  double cost = 0.0;
+  for (const Candidate& c : candidates) {
+    if (used_d[c.detected] || used_r[c.real]) continue;
+    used_d[c.detected] = used_r[c.real] = true;
+    out.push_back({c.detected, c.real});
+    cost += c.cost;
+  }
+  std::sort(out.begin(), out.end(), [](const StepMatch& a, const StepMatch& b) { return a.detected < b.detected; });
+  if (total_cost) *total_cost = cost;
+  return out;
+}
+
+// Squared distance (m^2) when within half the real tread (dx) and half the real
+// riser (dz). Not normalised by the tolerance: a landing's deep tread would
+// make it the cheapest match of all.
+std::optional<double> match_cost(double dx_m, double dz_m, const Step& real) {
+  if (!real.tread_depth_m || !real.riser_height_m) return std::nullopt;
+  const double tx = 0.5 * *real.tread_depth_m, tz = 0.5 * *real.riser_height_m;
+  if (!(std::abs(dx_m) <= tx) || !(std::abs(dz_m) <= tz)) return std::nullopt;
+  return dx_m * dx_m + dz_m * dz_m;
+}
+
+struct Accumulator {
+  int n = 0;
+  double sum = 0.0, sum_abs = 0.0;
+  void add(double v) {
+    ++n;
+    sum += v;
+    sum_abs += std::abs(v);
+  }
+  ErrorStats stats() const {
+    ErrorStats s;
+    s.n = n;
+    if (n > 0) {
+      s.mean_signed = sum / n;
+      s.mean_abs = sum_abs / n;
+    }
+    return s;
+  }
+};
+
+// Foot of real step k's riser in the stair frame (x, z); below step 0 the
+// stair is extrapolated with step 0's dimensions.
+Eigen::Vector2d riser_foot(const std::vector<Step>& real, int k) {
+  const Step& s0 = real.front();
+  const Eigen::Vector2d foot0(s0.nosing_m.x(), s0.nosing_m.z() - s0.riser_height_m.value_or(0.0));
+  if (k >= 0) {
+    const Step& s = real[static_cast<size_t>(k)];
+    return {s.nosing_m.x(), s.nosing_m.z() - s.riser_height_m.value_or(0.0)};
+  }
+  return foot0 + k * Eigen::Vector2d(s0.tread_depth_m.value_or(0.0), s0.riser_height_m.value_or(0.0));
+}
+
+}  // namespace
+
+std::vector<Step> real_steps(const GroundTruth& truth) {
+  std::vector<Step> out;
+  for (const Flight& f : truth.flights) out.insert(out.end(), f.steps.begin(), f.steps.end());
+  return out;
+}
+
+Eigen::Isometry3d gravity_frame_in_stair(const GroundTruthFrame& frame) {
+  const Eigen::Matrix3d R = frame.orientation.normalized().toRotationMatrix();
+  Eigen::Vector3d forward = R.col(2);
+  forward.z() = 0.0;
+  if (forward.norm() < 1e-6) {  // looking straight down: image up is forward
+    forward = -R.col(1);
+    forward.z() = 0.0;
+  }
+  forward.normalize();
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear().col(0) = forward;
+  T.linear().col(1) = up.cross(forward);
+  T.linear().col(2) = up;
+  T.translation() = frame.position_m;
+  return T;
+}
+
+Eigen::Vector3d true_nosing_in_gravity_frame(const Step& real, const GroundTruthFrame& frame, double left_m) {
+  const Eigen::Isometry3d to_gravity = gravity_frame_in_stair(frame).inverse();
+  const Eigen::Vector3d p0 = to_gravity * Eigen::Vector3d(real.nosing_m.x(), 0.0, real.nosing_m.z());
+  const Eigen::Vector3d dir = to_gravity.linear() * Eigen::Vector3d::UnitY();  // horizontal, unit
+  const double t = std::abs(dir.y()) >= 0.5 ? (left_m - p0.y()) / dir.y()
+                                            : -(p0.x() * dir.x() + p0.y() * dir.y());
+  return p0 + t * dir;
+}
+
+std::vector<StepMatch> match_frame_steps(const std::vector<Step>& detected, const std::vector<Step>& real,
+                                         const GroundTruthFrame& frame) {
+  std::vector<Candidate> candidates;
+  for (size_t i = 0; i < detected.size(); ++i) {
+    const Eigen::Vector3d& d = detected[i].nosing_m;
+    for (size_t j = 0; j < real.size(); ++j) {
+      const Eigen::Vector3d t = true_nosing_in_gravity_frame(real[j], frame, d.y());
+      if (auto c = match_cost(d.x() - t.x(), d.z() - t.z(), real[j]))
+        candidates.push_back({*c, static_cast<int>(i), static_cast<int>(j)});
+    }
+  }
+  return assign(std::move(candidates), detected.size(), real.size());
+}
+
+ModelMatch match_model_steps(const std::vector<Step>& model, const std::vector<Step>& real) {
+  ModelMatch best;
+  if (model.empty() || real.empty()) return best;
+  const int n_model = static_cast<int>(model.size()), n_real = static_cast<int>(real.size());
+  const Eigen::Vector2d foot0 = riser_foot(real, 0);
+  double best_cost = 0.0;
+  int best_agree = 0;
+  bool have = false;
+  // Offsets in order of |o| so that strict comparisons keep the smaller one.
+  for (int k = 0; k <= std::max(n_model, n_real); ++k) {
+    for (int o : {k, -k}) {
+      if (o < -n_model || o > n_real - 1) continue;
+      const Eigen::Vector2d shift = riser_foot(real, o) - foot0;
+      std::vector<Candidate> candidates;
+      for (int i = 0; i < n_model; ++i) {
+        const Eigen::Vector2d m(model[i].nosing_m.x() + shift.x(), model[i].nosing_m.z() + shift.y());
+        for (int j = 0; j < n_real; ++j)
+          if (auto c = match_cost(m.x() - real[j].nosing_m.x(), m.y() - real[j].nosing_m.z(), real[j]))
+            candidates.push_back({*c, i, j});
+      }
+      double cost = 0.0;
+      auto matches = assign(std::move(candidates), model.size(), real.size(), &cost);
+      int agree = 0;
+      for (const StepMatch& m : matches) agree += model[m.detected].landing == real[m.real].landing ? 1 : 0;
+      // On a uniform flight several offsets match equally many steps; the one
+      // that also agrees on which step is the landing is the right one.
+      const bool better = !have || matches.size() > best.matches.size() ||
+                          (matches.size() == best.matches.size() &&
+                           (agree > best_agree || (agree == best_agree && cost < best_cost)));
+      if (better) {
+        best = {o, std::move(matches)};
+        best_cost = cost;
+        best_agree = agree;
+        have = true;
+      }
+      if (k == 0) break;
+    }
+  }
+  return best;
+}
+
+LatencyStats latency_stats(std::vector<double> samples_ms) {
+  LatencyStats s;
+  s.n = static_cast<int>(samples_ms.size());
+  if (samples_ms.empty()) return s;
+  std::sort(samples_ms.begin(), samples_ms.end());
+  const size_t n = samples_ms.size();
+  s.median_ms = n % 2 ? samples_ms[n / 2] : 0.5 * (samples_ms[n / 2 - 1] + samples_ms[n / 2]);
+  const size_t rank = static_cast<size_t>(std::ceil(0.95 * static_cast<double>(n)));
+  s.p95_ms = samples_ms[std::max<size_t>(rank, 1) - 1];
+  return s;
+}
+
+std::map<std::string, LatencyStats> latency_by_stage(const std::vector<FrameResult>& frames) {
+  std::map<std::string, std::vector<double>> samples;
+  for (const FrameResult& f : frames)
+    for (const StageLatency& l : f.latency) samples[l.name].push_back(l.ms);
+  std::map<std::string, LatencyStats> out;
+  for (auto& [name, v] : samples) out[name] = latency_stats(std::move(v));
+  return out;
+}
+
+Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight>* model,
+                const GroundTruth& truth) {
+  Score s;
+  const std::vector<Step> real = real_steps(truth);
+  Accumulator pitch, roll, height;
+  for (const FrameResult& f : frames) {
+    if (!f.truth) continue;
+    const GroundTruthFrame& gt = *f.truth;
+    ++s.frames_scored;
+    std::set<int> visible;
+    for (int v : gt.visible_steps)
+      if (v >= 0 && v < static_cast<int>(real.size())) visible.insert(v);
+    s.visible_steps += static_cast<int>(visible.size());
+    const auto matches = match_frame_steps(f.steps, real, gt);
+    for (const StepMatch& m : matches) s.frame_steps_matched += visible.count(m.real) ? 1 : 0;
+    const int false_steps = static_cast<int>(f.steps.size() - matches.size());
+    s.frame_false_steps += false_steps;
+    s.frames_with_false_steps += false_steps > 0 ? 1 : 0;
+    if (f.camera.valid) {
+      ++s.pose_frames_valid;
+      pitch.add(f.camera.pitch_deg - gt.pitch_deg);
+      roll.add(f.camera.roll_deg - gt.roll_deg);
+      if (f.camera.height_m) height.add(100.0 * (*f.camera.height_m - gt.height_m));
+    }
+  }
+  if (s.visible_steps > 0) s.frame_step_detection = double(s.frame_steps_matched) / s.visible_steps;
+  s.pitch_error_deg = pitch.stats();
+  s.roll_error_deg = roll.stats();
+  s.height_error_cm = height.stats();
+
+  if (model) {
+    s.model_scored = true;
+    std::vector<Step> model_steps;
+    for (const Flight& f : *model) model_steps.insert(model_steps.end(), f.steps.begin(), f.steps.end());
+    const ModelMatch mm = match_model_steps(model_steps, real);
+    s.model_steps_real = static_cast<int>(real.size());
+    s.model_steps_detected = static_cast<int>(mm.matches.size());
+    s.model_false_steps = static_cast<int>(model_steps.size() - mm.matches.size());
+    s.model_step_offset = mm.offset_steps;
+    Accumulator riser, tread;
+    for (const StepMatch& m : mm.matches) {
+      const Step& est = model_steps[m.detected];
+      const Step& gt = real[m.real];
+      if (est.riser_height_m && gt.riser_height_m) riser.add(100.0 * (*est.riser_height_m - *gt.riser_height_m));
+      if (!gt.landing && est.tread_depth_m && gt.tread_depth_m)
+        tread.add(100.0 * (*est.tread_depth_m - *gt.tread_depth_m));
+    }
+    s.riser_error_cm = riser.stats();
+    s.tread_error_cm = tread.stats();
+  }
+  s.latency_ms = latency_by_stage(frames);
+  return s;
+}
+
+}  // namespace stairs::eval

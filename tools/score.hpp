@@ -1,0 +1,108 @@
+// Scores of a replayed run against ground truth: DESIGN.md 'Scores' made exact
+// (the thesis' tables 6.1-6.4). Free functions over common/types.hpp.
+#pragma once
+
+#include "common/types.hpp"
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace stairs::eval {
+
+// What the replay keeps of one frame.
+struct FrameResult {
+  double timestamp_s = 0.0;
+  CameraPose camera;
+  Direction direction = Direction::None;
+  std::vector<Step> steps;  // nearest first, gravity-aligned camera frame
+  // "perception", "tracker" and perception's own stages as "perception/<name>".
+  std::vector<StageLatency> latency;
+  std::optional<GroundTruthFrame> truth;
+};
+
+struct ErrorStats {
+  int n = 0;
+  std::optional<double> mean_signed;  // estimate - truth
+  std::optional<double> mean_abs;
+};
+
+struct LatencyStats {
+  int n = 0;
+  double median_ms = 0.0;
+  double p95_ms = 0.0;  // nearest rank
+};
+
+struct Score {
+  // Table 6.1: over the frames with ground truth.
+  int frames_scored = 0;
+  int visible_steps = 0;
+  int frame_steps_matched = 0;  // matches to visible real steps
+  std::optional<double> frame_step_detection;  // matched / visible, 0..1
+  int frame_false_steps = 0;  // detections matched to no real step, all frames
+  int frames_with_false_steps = 0;
+  // Tables 6.2-6.4: the final model (absent when no tracker ran).
+  bool model_scored = false;
+  int model_steps_real = 0;
+  int model_steps_detected = 0;
+  int model_false_steps = 0;
+  int model_step_offset = 0;  // model origin sits on this real step's riser
+  ErrorStats riser_error_cm;
+  ErrorStats tread_error_cm;  // landing depths excluded
+  // Camera pose: mean absolute over frames with a valid estimated pose.
+  int pose_frames_valid = 0;
+  ErrorStats pitch_error_deg;
+  ErrorStats roll_error_deg;
+  ErrorStats height_error_cm;  // only where both heights are known
+  std::map<std::string, LatencyStats> latency_ms;
+};
+
+struct StepMatch {
+  int detected = -1;
+  int real = -1;  // index into real_steps()
+};
+
+// All real steps, bottom first across flights (the indexing of visible_steps).
+std::vector<Step> real_steps(const GroundTruth& truth);
+
+// Gravity-aligned camera frame -> stair frame, from the TRUE camera pose:
+// origin at the camera centre, x = horizontal projection of the optical axis,
+// z up, y = z x x.
+Eigen::Isometry3d gravity_frame_in_stair(const GroundTruthFrame& frame);
+
+// A real step's nosing line (stair y axis through (x, 0, z)) in the
+// gravity-aligned frame, evaluated at lateral coordinate `left_m`; where the
+// line runs within 30 deg of the optical axis, at its point nearest the camera.
+Eigen::Vector3d true_nosing_in_gravity_frame(const Step& real, const GroundTruthFrame& frame,
+                                             double left_m = 0.0);
+
+// One frame: detected nosings matched to real ones (|dx| <= tread/2 and
+// |dz| <= riser/2 of the real step), nearest pair first, each side at most once.
+std::vector<StepMatch> match_frame_steps(const std::vector<Step>& detected,
+                                         const std::vector<Step>& real,
+                                         const GroundTruthFrame& frame);
+
+struct ModelMatch {
+  int offset_steps = 0;
+  std::vector<StepMatch> matches;
+};
+
+// The final model against the truth, both in stair frames: the model is shifted
+// by whole real steps (offset o puts the model origin at real step o's riser
+// foot; negative o extrapolates with step 0) and the offset matching most steps
+// wins (then the one agreeing most on landings, then the smaller summed squared
+// distance, then the smaller |o|).
+ModelMatch match_model_steps(const std::vector<Step>& model, const std::vector<Step>& real);
+
+// Median and nearest-rank p95 of a sample.
+LatencyStats latency_stats(std::vector<double> samples_ms);
+// Per stage name over all frames (no ground truth needed).
+std::map<std::string, LatencyStats> latency_by_stage(const std::vector<FrameResult>& frames);
+
+// Everything above over a run. `model` holds the final model's flights, or is
+// null when no tracker ran.
+Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight>* model,
+                const GroundTruth& truth);
+
+}  // namespace stairs::eval

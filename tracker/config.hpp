@@ -1,0 +1,64 @@
+// Every parameter of the stair tracker (thesis chapter 5 plus real-speed
+// tracking), with its unit and default.
+#pragma once
+
+#include <string>
+
+namespace stairs {
+
+struct TrackerConfig {
+  // --- seeding
+  int min_seed_steps = 2;  // steps an observation needs to start a model
+
+  // --- registration (4-DoF ICP in the gravity-aligned frame: x, y, z, yaw)
+  double icp_max_distance_m = 1.0;   // m; first (coarsest) correspondence threshold
+  double icp_min_distance_m = 0.01;  // m; last (finest) threshold
+  double icp_distance_factor = 0.5;  // threshold shrink per stage
+  int icp_iterations_per_stage = 2;  // closed-form updates per threshold
+  int registration_points_per_plane = 128;  // observation points used per tread/riser (even stride)
+  double nosing_weight_points = 40.0;       // one observed nosing counts as this many plane points
+  double accept_distance_m = 0.04;          // m; a point within this of the model counts as agreeing
+  double min_inlier_ratio = 0.5;            // registrations agreeing less are rejected
+  double max_yaw_jump_deg = 15.0;           // deg; per observation, vs. the motion prior
+  double max_translation_jump_m = 0.12;     // m; ICP correction vs. the motion prior (< half a tread)
+  double velocity_window_s = 0.5;           // s; constant velocity from the poses this far back (noise / window)
+  double max_prediction_s = 1.5;            // s; longer gaps predict no motion (relocalise instead)
+
+  // --- relocalisation after a gap or loss
+  double relocalise_after_s = 0.2;  // s; a gap longer than this triggers a whole-step search
+  int relocalise_step_range = 2;    // whole-step shifts tried each way
+
+  // --- merge (thesis 5.2)
+  double match_riser_fraction = 0.5;   // steps match within this fraction of a riser height (z)
+  double match_tread_fraction = 0.5;   // ... and of a tread depth (x)
+  int max_average_weight = 30;         // running averages turn exponential after this many observations
+  int max_plane_points = 1024;         // model points per plane (ICP rejections only)
+  double default_riser_m = 0.17;       // m; used until the model has measured risers
+  double default_tread_m = 0.28;       // m; used until the model has measured treads
+  double landing_min_depth_m = 0.5;    // m; a deeper tread becomes a landing
+  int min_confirmations = 2;           // observations a step needs to be published
+  int max_model_steps = 128;           // cap on the model's steps (memory and message size)
+  double monotonic_tolerance_m = 0.04; // m; a new step must rise with x within this
+
+  // --- direction hysteresis
+  int direction_window = 7;    // last observations considered
+  int direction_majority = 5;  // votes needed to change the direction
+
+  // --- occlusion reconstruction on the model (thesis 4.5 applied to the model)
+  int max_reconstructed_gap_steps = 3;  // at most this many missing steps filled between two seen ones
+  double reconstruct_tolerance = 0.25;  // fraction of a riser/tread a gap may deviate from whole steps
+
+  // --- quality and reset
+  double lost_after_s = 0.5;  // s without an accepted registration: state Lost
+  double reset_after_s = 5.0; // s lost: the model is dropped when the next stair comes into view
+};
+
+// Reads a JSON object of parameters (any subset). Throws std::runtime_error
+// naming the file and key on an unknown key, a wrong type, a value out of range
+// or an unreadable file.
+TrackerConfig load_tracker_config(const std::string& json_path);
+
+// Throws std::runtime_error naming the first parameter out of range.
+void validate(const TrackerConfig& c);
+
+}  // namespace stairs

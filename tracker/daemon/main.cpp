@@ -1,0 +1,86 @@
+// stairs-tracker: STAIRS_OBSERVATION in, STAIRS_MODEL out on every observation.
+// Thin: decode, validate, Tracker::update, encode, publish, report status.
+#include "common/daemon.hpp"
+#include "common/lcm_bridge.hpp"
+#include "tracker/config.hpp"
+#include "tracker/tracker.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <iostream>
+
+namespace {
+
+struct Handler {
+  stairs::Tracker* tracker;
+  lcm::LCM* lcm;
+  stairs::StatusReporter* status;
+  std::string model_channel;
+
+  void on_observation(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    status->received();
+    stairs::stair_observation_t msg;
+    stairs::Observation obs;
+    std::string error;
+    if (!stairs::decode_message(rbuf->data, rbuf->data_size, msg, error) || !stairs::from_lcm(msg, obs, error)) {
+      status->invalid(error);
+      return;
+    }
+    const int64_t dropped_before = tracker->dropped_out_of_order();
+    const stairs::StairModel& model = tracker->update(obs);
+    if (tracker->dropped_out_of_order() > dropped_before) {
+      status->dropped("out-of-order observation (utime " + std::to_string(obs.source_utime) + ")");
+      return;
+    }
+    const stairs::stair_model_t out = stairs::to_lcm(model, stairs::now_utime(), obs.source_utime, obs.source_seq);
+    lcm->publish(model_channel, &out);
+    status->published(model.update_latency_ms);
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  stairs::Options opts("stairs-tracker",
+                       "Fuses stair observations into an incremental stair model (thesis chapter 5) and publishes "
+                       "it on every observation.");
+  opts.add("lcm-url", "URL", "LCM URL (empty = LCM's default)", "")
+      .add("observation-channel", "NAME", "channel of stair_observation_t input", "STAIRS_OBSERVATION")
+      .add("model-channel", "NAME", "channel of stair_model_t output", "STAIRS_MODEL")
+      .add("status-channel", "NAME", "channel of daemon_status_t", "STAIRS_STATUS")
+      .add("config", "FILE", "tracker parameters as JSON (any subset of TrackerConfig)", "")
+      .add("reset-after-s", "S", "a model lost this long is dropped when a stair is in view again (overrides --config)", "")
+      .add("verbose", "", "print the status line once a second even without a terminal");
+  opts.parse(argc, argv);
+
+  stairs::TrackerConfig config;
+  try {
+    if (!opts.get("config").empty()) config = stairs::load_tracker_config(opts.get("config"));
+    if (opts.has("reset-after-s")) config.reset_after_s = opts.get_double("reset-after-s");
+    stairs::validate(config);
+  } catch (const std::exception& e) {
+    std::cerr << "stairs-tracker: " << e.what() << "\n";
+    return 2;
+  }
+
+  lcm::LCM lcm(opts.get("lcm-url"));
+  if (!lcm.good()) {
+    std::cerr << "stairs-tracker: cannot open LCM URL '" << opts.get("lcm-url") << "'\n";
+    return 1;
+  }
+  stairs::install_stop_signals();
+  stairs::Tracker tracker(config);
+  stairs::StatusReporter status(&lcm, "stairs-tracker", opts.get("status-channel"), opts.flag("verbose"));
+  Handler handler{&tracker, &lcm, &status, opts.get("model-channel")};
+  lcm.subscribe(opts.get("observation-channel"), &Handler::on_observation, &handler);
+  while (!stairs::stop_requested()) {
+    // A stop signal interrupts the wait: that is no failure.
+    if (lcm.handleTimeout(100) < 0 && !stairs::stop_requested()) {
+      std::cerr << "stairs-tracker: LCM receive failed\n";
+      break;
+    }
+    status.tick();
+  }
+  status.final_report();
+  return 0;
+}

@@ -1,0 +1,139 @@
+#include "tracker/merge.hpp"
+
+#include "tracker/config.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stairs {
+
+namespace {
+
+const Plane* plane_at(const Observation& obs, int index) {
+  return index >= 0 && index < static_cast<int>(obs.planes.size()) ? &obs.planes[index] : nullptr;
+}
+
+void add_lateral_extent(const Plane& p, const Eigen::Isometry3d& pose, std::optional<double>& lo, std::optional<double>& hi) {
+  for (const auto& corner : p.corners) {
+    const double y = (pose * corner.cast<double>()).y();
+    lo = lo ? std::min(*lo, y) : y;
+    hi = hi ? std::max(*hi, y) : y;
+  }
+}
+
+// Keeps at most `cap` points, overwriting cyclically once full.
+void keep_points(std::vector<Eigen::Vector3f>& kept, int& seen, const Eigen::Vector3f& p, int cap) {
+  if (cap <= 0) return;
+  if (static_cast<int>(kept.size()) < cap)
+    kept.push_back(p);
+  else
+    kept[seen % cap] = p;
+  ++seen;
+}
+
+// The ICP rejections of a matched plane: points farther than the finest
+// threshold from the model plane (`axis` 0 = riser x, 2 = tread z).
+void add_rejections(const Plane& p, const Eigen::Isometry3f& pose, int axis, double plane_m, double reject_m, int cap,
+                    std::vector<Eigen::Vector3f>& kept, int& seen) {
+  for (const auto& q : p.points) {
+    const Eigen::Vector3f w = pose * q;
+    if (std::abs(w[axis] - plane_m) > reject_m) keep_points(kept, seen, w, cap);
+  }
+}
+
+void update(MapStep& m, const ObservedStep& o, const Pose4& pose, const TrackerConfig& c) {
+  const int cap = c.max_average_weight;
+  if (o.riser_x_m) m.riser_x_m.add(*o.riser_x_m, cap);
+  m.nosing_x_m.add(o.nosing_m.x(), cap);
+  m.tread_z_m.add(o.z(), cap);
+  if (o.riser_height_m) m.riser_height_m.add(*o.riser_height_m, cap);
+  if (o.tread_far_x_m) m.tread_far_x_m = std::max(m.tread_far_x_m, *o.tread_far_x_m);
+  if (o.y_min_m) m.y_min_m.add(*o.y_min_m, cap);
+  if (o.y_max_m) m.y_max_m.add(*o.y_max_m, cap);
+  ++m.confirmations;
+  m.reconstructed = false;
+  const Eigen::Isometry3f to_model = pose.isometry().cast<float>();
+  if (o.riser)
+    add_rejections(*o.riser, to_model, 0, m.x(), c.icp_min_distance_m, c.max_plane_points, m.riser_points,
+                   m.riser_points_seen);
+  if (o.tread)
+    add_rejections(*o.tread, to_model, 2, m.z(), c.icp_min_distance_m, c.max_plane_points, m.tread_points,
+                   m.tread_points_seen);
+}
+
+// A new step must keep the stair rising: above every step before it and below
+// every step after it, by at least half a riser.
+bool fits_between(const StairMap& map, size_t at, const ObservedStep& o, double riser, const TrackerConfig& c) {
+  const double need = 0.5 * riser - c.monotonic_tolerance_m;
+  if (at > 0 && o.z() - map.steps[at - 1].z() < need) return false;
+  if (at < map.steps.size() && map.steps[at].z() - o.z() < need) return false;
+  return true;
+}
+
+}  // namespace
+
+std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& pose) {
+  std::vector<ObservedStep> out;
+  const Eigen::Isometry3d to_model = pose.isometry();
+  for (const Step& s : obs.steps) {
+    ObservedStep o;
+    o.nosing_m = to_model * s.nosing_m;
+    o.riser = plane_at(obs, s.riser_plane);
+    o.tread = plane_at(obs, s.tread_plane);
+    if (o.riser) {
+      o.riser_x_m = (to_model * o.riser->centroid.cast<double>()).x();
+      add_lateral_extent(*o.riser, to_model, o.y_min_m, o.y_max_m);
+    }
+    if (o.tread) {
+      o.tread_z_m = o.tread->centroid.z() + pose.t_m.z();
+      double far = -1e9;
+      for (const auto& corner : o.tread->corners) far = std::max(far, (to_model * corner.cast<double>()).x());
+      o.tread_far_x_m = far;
+      add_lateral_extent(*o.tread, to_model, o.y_min_m, o.y_max_m);
+    }
+    o.riser_height_m = s.riser_height_m;
+    out.push_back(o);
+  }
+  return out;
+}
+
+int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4& pose, const TrackerConfig& c) {
+  const double riser = typical_riser_m(map, c);
+  const double tread = typical_tread_m(map, c);
+  // Match against the model as it was before this observation.
+  std::vector<int> match(observed.size(), -1);
+  std::vector<bool> taken(map.steps.size(), false);
+  for (size_t i = 0; i < observed.size(); ++i) {
+    double best = 1e9;
+    for (size_t k = 0; k < map.steps.size(); ++k) {
+      if (taken[k]) continue;
+      const double dz = std::abs(observed[i].z() - map.steps[k].z()) / riser;
+      const double dx = std::abs(observed[i].x() - map.steps[k].x()) / tread;
+      if (dz < c.match_riser_fraction && dx < c.match_tread_fraction && dz + dx < best) {
+        best = dz + dx;
+        match[i] = static_cast<int>(k);
+      }
+    }
+    if (match[i] >= 0) taken[match[i]] = true;
+  }
+  for (size_t i = 0; i < observed.size(); ++i)
+    if (match[i] >= 0) update(map.steps[match[i]], observed[i], pose, c);
+
+  int inserted = 0;
+  for (size_t i = 0; i < observed.size(); ++i) {
+    if (match[i] >= 0 || static_cast<int>(map.steps.size()) >= c.max_model_steps) continue;
+    const ObservedStep& o = observed[i];
+    const auto at = std::lower_bound(map.steps.begin(), map.steps.end(), o.x(),
+                                     [](const MapStep& s, double x) { return s.x() < x; }) -
+                    map.steps.begin();
+    if (!fits_between(map, static_cast<size_t>(at), o, riser, c)) continue;
+    MapStep m;
+    update(m, o, pose, c);
+    map.steps.insert(map.steps.begin() + at, std::move(m));
+    ++inserted;
+  }
+  return inserted;
+}
+
+}  // namespace stairs
+

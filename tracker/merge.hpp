@@ -1,0 +1,34 @@
+// Merging a registered observation into the model (thesis 5.2): steps match by
+// tread height and riser/nosing position; matched steps average their planes and
+// bounding boxes and take only the points the model does not explain yet; new
+// steps are inserted where they belong along x when they keep the stair rising.
+#pragma once
+
+#include "common/types.hpp"
+#include "tracker/pose.hpp"
+#include "tracker/stair_map.hpp"
+
+#include <optional>
+#include <vector>
+
+namespace stairs {
+
+struct TrackerConfig;
+
+// One observed step expressed in the model frame W.
+struct ObservedStep {
+  std::optional<double> riser_x_m, tread_z_m, riser_height_m, tread_far_x_m;
+  Eigen::Vector3d nosing_m = Eigen::Vector3d::Zero();
+  std::optional<double> y_min_m, y_max_m;
+  const Plane* riser = nullptr;
+  const Plane* tread = nullptr;
+  double x() const { return riser_x_m ? *riser_x_m : nosing_m.x(); }
+  double z() const { return tread_z_m ? *tread_z_m : nosing_m.z(); }
+};
+
+std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& pose);
+
+// Returns the number of new steps inserted.
+int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4& pose, const TrackerConfig& c);
+
+}  // namespace stairs

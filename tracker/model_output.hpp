@@ -1,0 +1,20 @@
+// The published StairModel: the model's confirmed steps in the stair frame
+// (origin at the bottom of the model's own first riser), split into flights at
+// landings, with planes and the camera on the stair.
+#pragma once
+
+#include "common/types.hpp"
+#include "tracker/pose.hpp"
+#include "tracker/stair_map.hpp"
+
+namespace stairs {
+
+struct TrackerConfig;
+
+// Fills out.flights, out.planes and the camera fields; leaves state, counters,
+// direction and quality to the caller. `camera` is the gravity-aligned camera
+// frame -> W pose; `gravity_rotation` is the observation's optical -> gravity.
+void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
+                const Eigen::Quaterniond& gravity_rotation, const TrackerConfig& c, StairModel& out);
+
+}  // namespace stairs

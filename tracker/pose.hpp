@@ -1,0 +1,27 @@
+// A 4-DoF pose (yaw about gravity + translation): after gravity alignment the
+// stair's planes are horizontal or vertical, so this is all registration needs.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+namespace stairs {
+
+struct Pose4 {
+  double yaw_rad = 0.0;
+  Eigen::Vector3d t_m = Eigen::Vector3d::Zero();
+
+  Eigen::Matrix3d rotation() const { return Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix(); }
+  Eigen::Isometry3d isometry() const {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = rotation();
+    T.translation() = t_m;
+    return T;
+  }
+};
+
+// Angle wrapped to (-pi, pi].
+inline double wrap_angle(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+}  // namespace stairs

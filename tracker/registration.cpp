@@ -1,0 +1,178 @@
+#include "tracker/registration.hpp"
+
+#include "tracker/config.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace stairs {
+
+namespace {
+
+void sample(const Plane& p, int n, std::vector<Eigen::Vector3d>& out) {
+  const size_t stride = std::max<size_t>(1, p.points.size() / static_cast<size_t>(n));
+  for (size_t i = 0; i < p.points.size(); i += stride) out.push_back(p.points[i].cast<double>());
+}
+
+// The model's planes as bounded lines in the x-z profile.
+struct Profile {
+  std::vector<double> riser_x, riser_z_lo, riser_z_hi;
+  std::vector<double> tread_z, tread_x_lo, tread_x_hi;
+  std::vector<Eigen::Vector2d> nosing_xz;
+};
+
+Profile profile(const StairMap& map, const TrackerConfig& c) {
+  Profile p;
+  const double floor_z = floor_z_m(map, c);
+  const double tread = typical_tread_m(map, c);
+  for (size_t i = 0; i < map.steps.size(); ++i) {
+    const MapStep& s = map.steps[i];
+    p.riser_x.push_back(s.x());
+    p.riser_z_lo.push_back(i == 0 ? floor_z : map.steps[i - 1].z());
+    p.riser_z_hi.push_back(s.z());
+    p.tread_z.push_back(s.z());
+    p.tread_x_lo.push_back(s.x());
+    p.tread_x_hi.push_back(i + 1 < map.steps.size() ? map.steps[i + 1].x()
+                                                    : std::max(s.tread_far_x_m, s.x() + tread));
+    p.nosing_xz.emplace_back(s.x(), s.z());
+  }
+  return p;
+}
+
+double outside(double v, double lo, double hi) { return std::max({0.0, lo - v, v - hi}); }
+
+// std::hypot guards against overflow at a cost this inner loop cannot pay.
+double norm2(double a, double b) { return std::sqrt(a * a + b * b); }
+
+// Signed residual to the nearest bounded plane and the bounded distance.
+struct Match {
+  double residual = 0.0, distance = std::numeric_limits<double>::infinity();
+};
+
+Match nearest_riser(const Profile& p, const Eigen::Vector3d& q) {
+  Match m;
+  for (size_t k = 0; k < p.riser_x.size(); ++k) {
+    const double r = p.riser_x[k] - q.x();
+    const double d = norm2(r, outside(q.z(), p.riser_z_lo[k], p.riser_z_hi[k]));
+    if (d < m.distance) m = {r, d};
+  }
+  return m;
+}
+
+Match nearest_tread(const Profile& p, const Eigen::Vector3d& q) {
+  Match m;
+  for (size_t k = 0; k < p.tread_z.size(); ++k) {
+    const double r = p.tread_z[k] - q.z();
+    const double d = norm2(r, outside(q.x(), p.tread_x_lo[k], p.tread_x_hi[k]));
+    if (d < m.distance) m = {r, d};
+  }
+  return m;
+}
+
+Eigen::Vector2d nearest_nosing(const Profile& p, const Eigen::Vector3d& q) {
+  Eigen::Vector2d best(std::numeric_limits<double>::infinity(), 0.0);
+  for (const auto& n : p.nosing_xz) {
+    const Eigen::Vector2d r = n - Eigen::Vector2d(q.x(), q.z());
+    if (r.norm() < best.norm()) best = r;
+  }
+  return best;
+}
+
+}  // namespace
+
+RegistrationInput registration_input(const Observation& obs, int points_per_plane) {
+  RegistrationInput in;
+  for (const Step& s : obs.steps) {
+    if (s.riser_plane >= 0 && s.riser_plane < static_cast<int>(obs.planes.size()))
+      sample(obs.planes[s.riser_plane], points_per_plane, in.riser_points);
+    if (s.tread_plane >= 0 && s.tread_plane < static_cast<int>(obs.planes.size()))
+      sample(obs.planes[s.tread_plane], points_per_plane, in.tread_points);
+    in.nosings.push_back(s.nosing_m);
+  }
+  return in;
+}
+
+std::optional<double> observed_axis_angle_rad(const Observation& obs) {
+  // Doubled angles average orientations that are only known modulo pi.
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  auto add = [&](double angle, double weight) { sum += weight * Eigen::Vector2d(std::cos(2 * angle), std::sin(2 * angle)); };
+  for (const Step& s : obs.steps) {
+    if (s.riser_plane >= 0 && s.riser_plane < static_cast<int>(obs.planes.size())) {
+      const Plane& p = obs.planes[s.riser_plane];
+      if (std::hypot(p.normal.x(), p.normal.y()) > 0.5) add(std::atan2(p.normal.y(), p.normal.x()), p.length_m);
+    }
+    if (s.tread_plane >= 0 && s.tread_plane < static_cast<int>(obs.planes.size())) {
+      // The tread's box edges run across the stair; the axis is perpendicular.
+      const Plane& p = obs.planes[s.tread_plane];
+      const Eigen::Vector3f across = p.corners[Plane::kTopLeft] - p.corners[Plane::kTopRight] +
+                                     p.corners[Plane::kBottomLeft] - p.corners[Plane::kBottomRight];
+      if (across.head<2>().norm() > 0.1f) add(std::atan2(across.y(), across.x()) - M_PI / 2, 0.5 * p.length_m);
+    }
+  }
+  if (sum.norm() < 1e-6) return std::nullopt;
+  return 0.5 * std::atan2(sum.y(), sum.x());
+}
+
+double yaw_from_axis(double axis_angle_rad, double prior_yaw_rad) {
+  // yaw maps the axis onto +x: yaw = -axis (+ pi for the opposite sign).
+  const double a = wrap_angle(-axis_angle_rad);
+  const double b = wrap_angle(a + M_PI);
+  return std::abs(wrap_angle(a - prior_yaw_rad)) <= std::abs(wrap_angle(b - prior_yaw_rad)) ? a : b;
+}
+
+Registration register_to_map(const RegistrationInput& in, const StairMap& map, const Pose4& initial,
+                             const TrackerConfig& c) {
+  Registration reg;
+  reg.pose = initial;
+  if (map.empty()) return reg;
+  const Profile prof = profile(map, c);
+  const Eigen::Matrix3d R = initial.rotation();
+  std::vector<Eigen::Vector3d> risers, treads, nosings;
+  for (const auto& p : in.riser_points) risers.push_back(R * p);
+  for (const auto& p : in.tread_points) treads.push_back(R * p);
+  for (const auto& p : in.nosings) nosings.push_back(R * p);
+  const double wn = c.nosing_weight_points;
+
+  for (double thr = c.icp_max_distance_m;; thr = std::max(thr * c.icp_distance_factor, c.icp_min_distance_m)) {
+    for (int it = 0; it < c.icp_iterations_per_stage; ++it) {
+      const Eigen::Vector3d& t = reg.pose.t_m;
+      double sx = 0, wx = 0, sz = 0, wz = 0;
+      for (const auto& p : risers) {
+        const Match m = nearest_riser(prof, p + t);
+        if (m.distance < thr) sx += m.residual, wx += 1;
+      }
+      for (const auto& p : treads) {
+        const Match m = nearest_tread(prof, p + t);
+        if (m.distance < thr) sz += m.residual, wz += 1;
+      }
+      for (const auto& p : nosings) {
+        const Eigen::Vector2d r = nearest_nosing(prof, p + t);
+        if (r.norm() < thr) sx += wn * r.x(), wx += wn, sz += wn * r.y(), wz += wn;
+      }
+      if (wx > 0) reg.pose.t_m.x() += sx / wx;
+      if (wz > 0) reg.pose.t_m.z() += sz / wz;
+      reg.x_observed = reg.x_observed || wx > 0;
+    }
+    if (thr <= c.icp_min_distance_m) break;
+  }
+
+  // Quality: agreement of every plane point with the model at the final pose,
+  // risers and treads each on their own: a slip that fits the treads but puts
+  // the risers beside the model's must not pass on the treads' majority.
+  const Eigen::Vector3d& t = reg.pose.t_m;
+  double sq = 0;
+  int riser_in = 0, tread_in = 0;
+  auto count = [&](double d, int& in) {
+    if (d < c.accept_distance_m) ++in, sq += d * d;
+  };
+  for (const auto& p : risers) count(nearest_riser(prof, p + t).distance, riser_in);
+  for (const auto& p : treads) count(nearest_tread(prof, p + t).distance, tread_in);
+  reg.inliers = riser_in + tread_in;
+  const double riser_ratio = risers.empty() ? 1.0 : static_cast<double>(riser_in) / risers.size();
+  const double tread_ratio = treads.empty() ? 1.0 : static_cast<double>(tread_in) / treads.size();
+  reg.inlier_ratio = risers.empty() && treads.empty() ? 0.0 : std::min(riser_ratio, tread_ratio);
+  reg.rmse_m = reg.inliers > 0 ? std::sqrt(sq / reg.inliers) : -1.0;
+  return reg;
+}
+
+}  // namespace stairs

@@ -1,0 +1,45 @@
+// 4-DoF registration of one observation to the model (thesis 5.1 on the
+// stair's structure): yaw in closed form from the plane orientations, then a
+// point-to-plane ICP whose unknowns are the x and z offsets, with coarse-to-fine
+// correspondence thresholds. Riser points fix x, tread points fix z, nosings both.
+#pragma once
+
+#include "common/types.hpp"
+#include "tracker/pose.hpp"
+#include "tracker/stair_map.hpp"
+
+#include <optional>
+#include <vector>
+
+namespace stairs {
+
+struct TrackerConfig;
+
+// Observation samples in the gravity-aligned camera frame.
+struct RegistrationInput {
+  std::vector<Eigen::Vector3d> riser_points, tread_points, nosings;
+};
+
+RegistrationInput registration_input(const Observation& obs, int points_per_plane);
+
+// Direction of the stair axis (riser normals, tread edges) in the gravity-aligned
+// camera frame, as an angle about z modulo pi; nullopt without risers or treads.
+std::optional<double> observed_axis_angle_rad(const Observation& obs);
+
+// The yaw (gravity frame -> model) closest to `prior_yaw_rad` that maps the
+// observed axis onto the model's x axis.
+double yaw_from_axis(double axis_angle_rad, double prior_yaw_rad);
+
+struct Registration {
+  Pose4 pose;
+  double rmse_m = -1.0;       // over points within accept_distance_m
+  double inlier_ratio = 0.0;  // share of points within accept_distance_m, the lower of risers' and treads'
+  int inliers = 0;
+  bool x_observed = false;    // risers or nosings constrained x
+};
+
+// Registers with yaw fixed to `initial.yaw_rad`, starting from `initial`.
+Registration register_to_map(const RegistrationInput& in, const StairMap& map, const Pose4& initial,
+                             const TrackerConfig& c);
+
+}  // namespace stairs

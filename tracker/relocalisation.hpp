@@ -1,0 +1,13 @@
+// Re-localisation against the model after a gap: a periodic stair is ambiguous
+// by whole steps, so registration is tried from the motion prior shifted by
+// -k..k steps and the shift that agrees best with the model wins (ties go to the
+// smallest shift, i.e. to the motion prior and its step-count bookkeeping).
+#pragma once
+
+#include "tracker/registration.hpp"
+
+namespace stairs {
+
+Registration relocalise(const RegistrationInput& in, const StairMap& map, const Pose4& prior, const TrackerConfig& c);
+
+}  // namespace stairs

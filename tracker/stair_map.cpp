@@ -1,0 +1,46 @@
+#include "tracker/stair_map.hpp"
+
+#include "tracker/config.hpp"
+
+#include <algorithm>
+
+namespace stairs {
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+double typical_riser_m(const StairMap& map, const TrackerConfig& c) {
+  std::vector<double> r;
+  for (const auto& s : map.steps)
+    if (s.riser_height_m.known()) r.push_back(s.riser_height_m.value);
+  for (size_t i = 1; i < map.steps.size(); ++i) {
+    const double dz = map.steps[i].z() - map.steps[i - 1].z();
+    if (dz > 0.5 * c.default_riser_m && dz < 1.5 * c.default_riser_m) r.push_back(dz);
+  }
+  return r.empty() ? c.default_riser_m : median(r);
+}
+
+double typical_tread_m(const StairMap& map, const TrackerConfig& c) {
+  std::vector<double> t;
+  const double riser = typical_riser_m(map, c);
+  for (size_t i = 1; i < map.steps.size(); ++i) {
+    const double dz = map.steps[i].z() - map.steps[i - 1].z();
+    const double dx = map.steps[i].x() - map.steps[i - 1].x();
+    if (std::abs(dz - riser) < 0.3 * riser && dx < c.landing_min_depth_m) t.push_back(dx);
+  }
+  return t.empty() ? c.default_tread_m : median(t);
+}
+
+double floor_z_m(const StairMap& map, const TrackerConfig& c) {
+  const MapStep& first = map.steps.front();
+  const double riser = first.riser_height_m.known() ? first.riser_height_m.value : typical_riser_m(map, c);
+  return first.z() - riser;
+}
+
+}  // namespace stairs

@@ -1,0 +1,55 @@
+// The tracker's internal model: steps of one straight stair in the model frame
+// W (x along the ascending direction, y left, z up, fixed at the seed). The
+// published StairModel is W shifted to the model's own first riser.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace stairs {
+
+struct TrackerConfig;
+
+// A running mean that turns into an exponential one after `cap` samples, so
+// the model keeps following slow drift.
+struct RunningMean {
+  double value = 0.0;
+  int count = 0;
+  void add(double x, int cap) {
+    ++count;
+    value += (x - value) / std::min(count, cap);
+  }
+  bool known() const { return count > 0; }
+};
+
+struct MapStep {
+  RunningMean riser_x_m;       // riser plane position along x
+  RunningMean nosing_x_m;      // nosing edge position along x (where no riser was seen)
+  RunningMean tread_z_m;       // tread plane height
+  RunningMean riser_height_m;  // as perception measured it (first step, gaps)
+  RunningMean y_min_m, y_max_m;  // lateral bounding box
+  double tread_far_x_m = -1e9;   // farthest observed back edge of the tread
+  int confirmations = 0;
+  bool reconstructed = false;    // filled in between seen steps, never observed
+  std::vector<Eigen::Vector3f> riser_points, tread_points;  // W, ICP rejections, capped
+  int riser_points_seen = 0, tread_points_seen = 0;          // for the cyclic cap
+
+  double x() const { return riser_x_m.known() ? riser_x_m.value : nosing_x_m.value; }
+  double z() const { return tread_z_m.value; }
+};
+
+struct StairMap {
+  std::vector<MapStep> steps;  // sorted by x (bottom to top)
+  bool empty() const { return steps.empty(); }
+};
+
+// Typical riser height and tread depth of the model (medians of adjacent
+// steps), or the configured defaults while the model is too small.
+double typical_riser_m(const StairMap& map, const TrackerConfig& c);
+double typical_tread_m(const StairMap& map, const TrackerConfig& c);
+
+// Height of the floor below the first step.
+double floor_z_m(const StairMap& map, const TrackerConfig& c);
+
+}  // namespace stairs

@@ -1,0 +1,158 @@
+#include "tracker/tracker.hpp"
+
+#include "tracker/merge.hpp"
+#include "tracker/model_output.hpp"
+#include "tracker/reconstruction.hpp"
+#include "tracker/registration.hpp"
+#include "tracker/relocalisation.hpp"
+
+#include <chrono>
+#include <cmath>
+
+namespace stairs {
+
+namespace {
+
+double seconds(int64_t dt_us) { return static_cast<double>(dt_us) * 1e-6; }
+
+// Ascending axis in the gravity-aligned frame: the direction in which the
+// observed nosings rise; with one step, the observation's direction decides.
+std::optional<double> ascending_yaw(const Observation& obs) {
+  const auto axis = observed_axis_angle_rad(obs);
+  if (!axis) return std::nullopt;
+  const Eigen::Vector2d a(std::cos(*axis), std::sin(*axis));
+  double rise = 0.0;
+  for (size_t i = 1; i < obs.steps.size(); ++i) {
+    const Eigen::Vector3d d = obs.steps[i].nosing_m - obs.steps[i - 1].nosing_m;
+    rise += a.dot(d.head<2>()) * d.z();
+  }
+  if (obs.steps.size() == 1) {
+    const double ahead = a.dot(obs.steps[0].nosing_m.head<2>());
+    rise = obs.direction == Direction::Down ? -ahead : ahead;
+  }
+  const double ascending = rise >= 0 ? *axis : *axis + M_PI;
+  return wrap_angle(-ascending);
+}
+
+}  // namespace
+
+Tracker::Tracker(TrackerConfig config)
+    : config_(config), direction_(config.direction_window, config.direction_majority) {
+  validate(config_);
+}
+
+void Tracker::reset() {
+  map_ = StairMap();
+  direction_.reset();
+  accepted_.clear();
+  have_utime_ = false;
+  const StairModel fresh;
+  model_ = fresh;
+  ++resets_;
+}
+
+bool Tracker::seed(const Observation& obs) {
+  if (!obs.camera.valid || static_cast<int>(obs.steps.size()) < config_.min_seed_steps) return false;
+  const auto yaw = ascending_yaw(obs);
+  if (!yaw) return false;
+  Pose4 pose;
+  pose.yaw_rad = *yaw;
+  merge(map_, observed_steps(obs, pose), pose, config_);
+  if (map_.empty()) return false;
+  accepted_.emplace_back(obs.source_utime, pose);
+  model_.observations_fused = 1;
+  model_.state = TrackingState::Ok;
+  model_.registration_rmse_m = -1.0;
+  model_.registration_inlier_ratio = 0.0;
+  publish(obs, pose, true);
+  return true;
+}
+
+Pose4 Tracker::predict(int64_t utime) const {
+  const auto& [t1, p1] = accepted_.back();
+  const auto& [t0, p0] = accepted_.front();
+  const double dt = seconds(utime - t1);
+  if (t1 == t0 || dt > config_.max_prediction_s) return p1;
+  const double span = seconds(t1 - t0);
+  Pose4 p = p1;
+  p.t_m += (p1.t_m - p0.t_m) * (dt / span);
+  p.yaw_rad = wrap_angle(p1.yaw_rad + wrap_angle(p1.yaw_rad - p0.yaw_rad) * (dt / span));
+  return p;
+}
+
+const StairModel& Tracker::update(const Observation& obs) {
+  const auto start = std::chrono::steady_clock::now();
+  auto finish = [&]() -> const StairModel& {
+    model_.update_latency_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return model_;
+  };
+  if (have_utime_ && obs.source_utime <= last_utime_) {
+    ++dropped_out_of_order_;
+    model_.status = "dropped an out-of-order observation (" + std::to_string(dropped_out_of_order_) + " so far)";
+    return finish();
+  }
+  have_utime_ = true;
+  last_utime_ = obs.source_utime;
+  model_.direction = direction_.update(obs.direction);
+
+  // A stair lost for long is dropped once a new one is in view: until then the
+  // last model stays published.
+  if (!map_.empty() && !obs.steps.empty() &&
+      seconds(obs.source_utime - accepted_.back().first) > config_.reset_after_s) {
+    reset();
+    model_.direction = direction_.update(obs.direction);
+  }
+  if (map_.empty()) {
+    if (!seed(obs)) model_.status = "waiting for a stair to seed the model";
+    return finish();
+  }
+
+  const double since_accept_s = seconds(obs.source_utime - accepted_.back().first);
+  const Pose4 prior = predict(obs.source_utime);
+  auto not_registered = [&](const std::string& why) -> const StairModel& {
+    if (since_accept_s > config_.lost_after_s) model_.state = TrackingState::Lost;
+    model_.status = why;
+    publish(obs, prior, false);
+    return finish();
+  };
+  if (!obs.camera.valid || obs.steps.empty()) return not_registered("observation without steps");
+
+  Pose4 start_pose = prior;
+  if (const auto axis = observed_axis_angle_rad(obs)) {
+    const double yaw = yaw_from_axis(*axis, prior.yaw_rad);
+    if (std::abs(wrap_angle(yaw - prior.yaw_rad)) <= config_.max_yaw_jump_deg * M_PI / 180.0) start_pose.yaw_rad = yaw;
+  }
+  const RegistrationInput input = registration_input(obs, config_.registration_points_per_plane);
+  const bool relocalising = since_accept_s > config_.relocalise_after_s || model_.state == TrackingState::Lost;
+  const Registration reg = relocalising ? relocalise(input, map_, start_pose, config_)
+                                        : register_to_map(input, map_, start_pose, config_);
+  model_.registration_rmse_m = reg.rmse_m;
+  model_.registration_inlier_ratio = reg.inlier_ratio;
+  // Structure check: the correction must stay within the motion prior's reach
+  // (whole-step shifts are relocalisation's business) and most points must agree.
+  const double step_m = relocalising ? (config_.relocalise_step_range + 0.5) * typical_tread_m(map_, config_) : 0.0;
+  const double jump = (reg.pose.t_m - start_pose.t_m).norm();
+  if (reg.inlier_ratio < config_.min_inlier_ratio || jump > config_.max_translation_jump_m + step_m) {
+    ++rejected_registrations_;
+    return not_registered("registration rejected (inliers " + std::to_string(reg.inlier_ratio) + ", jump " +
+                          std::to_string(jump) + " m)");
+  }
+
+  merge(map_, observed_steps(obs, reg.pose), reg.pose, config_);
+  reconstruct_occluded_steps(map_, config_);
+  accepted_.emplace_back(obs.source_utime, reg.pose);
+  while (accepted_.size() > 2 && seconds(obs.source_utime - accepted_[1].first) >= config_.velocity_window_s)
+    accepted_.pop_front();
+  ++model_.observations_fused;
+  model_.state = relocalising ? TrackingState::Relocalised : TrackingState::Ok;
+  model_.status = relocalising ? "relocalised" : "ok";
+  publish(obs, reg.pose, true);
+  return finish();
+}
+
+void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid) {
+  fill_model(map_, pose, camera_valid, obs.camera.gravity_rotation, config_, model_);
+}
+
+}  // namespace stairs

@@ -1,0 +1,44 @@
+// The incremental stair model fused over observations (thesis chapter 5),
+// tracked at walking speed: seed, predict (constant velocity), register (4-DoF,
+// re-localising after gaps), merge, reconstruct, publish in the stair frame.
+#pragma once
+
+#include "common/types.hpp"
+#include "tracker/config.hpp"
+#include "tracker/direction.hpp"
+#include "tracker/pose.hpp"
+#include "tracker/stair_map.hpp"
+
+#include <deque>
+
+namespace stairs {
+
+class Tracker {
+ public:
+  explicit Tracker(TrackerConfig config = {});
+  // Fuses one observation; observations older than the last one are dropped
+  // (counted) and leave the model unchanged.
+  const StairModel& update(const Observation& obs);
+  const StairModel& model() const { return model_; }
+  void reset();
+
+  int64_t dropped_out_of_order() const { return dropped_out_of_order_; }
+  int64_t rejected_registrations() const { return rejected_registrations_; }
+  int64_t resets() const { return resets_; }
+
+ private:
+  bool seed(const Observation& obs);
+  Pose4 predict(int64_t utime) const;
+  void publish(const Observation& obs, const Pose4& pose, bool camera_valid);
+
+  TrackerConfig config_;
+  StairMap map_;
+  DirectionFilter direction_;
+  StairModel model_;
+  std::deque<std::pair<int64_t, Pose4>> accepted_;  // recent accepted poses (utime, pose), for the velocity
+  int64_t last_utime_ = 0;
+  bool have_utime_ = false;
+  int64_t dropped_out_of_order_ = 0, rejected_registrations_ = 0, resets_ = 0;
+};
+
+}  // namespace stairs
