@@ -1,5 +1,6 @@
 // Real LCM transport: a publisher and a subscriber in two processes over UDP
 // multicast on loopback, and in one process over memq.
+#include "tests/support/multicast.hpp"
 #include "common/lcm_bridge.hpp"
 
 #include <gtest/gtest.h>
@@ -42,34 +43,12 @@ struct Collector {
   }
 };
 
-// udpm works on loopback only with a multicast route; .ci/run adds one.
-bool multicast_loopback_works(const std::string& url) {
-  lcm::LCM lcm(url);
-  if (!lcm.good()) return false;
-  bool got = false;
-  struct H {
-    bool* got;
-    void on(const lcm::ReceiveBuffer*, const std::string&) { *got = true; }
-  } h{&got};
-  lcm.subscribe("STAIRS_PROBE", &H::on, &h);
-  const uint8_t byte = 1;
-  for (int i = 0; i < 10 && !got; ++i) {
-    lcm.publish("STAIRS_PROBE", &byte, 1);
-    lcm.handleTimeout(100);
-  }
-  return got;
-}
-
 }  // namespace
 
 TEST(Transport, UdpMulticastTwoProcesses) {
   // A test-only port keeps other LCM traffic on this machine out of the count.
   const std::string url = "udpm://239.255.76.67:7687?ttl=0&recv_buf_size=4194304";
-  if (!multicast_loopback_works(url)) {
-    if (std::system("ip route add 224.0.0.0/4 dev lo 2>/dev/null") != 0 || !multicast_loopback_works(url))
-      GTEST_SKIP() << "UDP multicast does not loop back here and no route could be added "
-                      "(run as root: ip route add 224.0.0.0/4 dev lo)";
-  }
+  if (!test::ensure_multicast_loopback(url)) GTEST_SKIP() << test::kMulticastSkipReason;
   lcm::LCM sub(url);
   ASSERT_TRUE(sub.good());
   Collector c;

@@ -1,6 +1,7 @@
 // stairs-openni2 as a subprocess: no device -> one line and a non-zero exit;
 // an .oni written by OniWriter -> the same frames out (log and udpm), status
 // on STAIRS_STATUS, a clean stop on SIGTERM.
+#include "tests/support/multicast.hpp"
 #include "common/lcm_bridge.hpp"
 #include "common/lcm_log.hpp"
 #include "drivers/openni2/oni_writer.hpp"
@@ -150,28 +151,6 @@ void expect_same_frames(const std::vector<depth_frame_t>& got, const std::vector
   }
 }
 
-bool multicast_loopback_works(const std::string& url) {
-  lcm::LCM lcm(url);
-  if (!lcm.good()) return false;
-  bool got = false;
-  struct H {
-    bool* got;
-    void on(const lcm::ReceiveBuffer*, const std::string&) { *got = true; }
-  } h{&got};
-  lcm.subscribe("STAIRS_PROBE", &H::on, &h);
-  const uint8_t byte = 1;
-  for (int i = 0; i < 10 && !got; ++i) {
-    lcm.publish("STAIRS_PROBE", &byte, 1);
-    lcm.handleTimeout(100);
-  }
-  return got;
-}
-
-bool ensure_multicast(const std::string& url) {
-  return multicast_loopback_works(url) ||
-         (std::system("ip route add 224.0.0.0/4 dev lo 2>/dev/null") == 0 && multicast_loopback_works(url));
-}
-
 int openni_devices() {
   if (openni::OpenNI::initialize() != openni::STATUS_OK) return -1;
   openni::Array<openni::DeviceInfo> list;
@@ -245,7 +224,7 @@ struct Subscriber {
 
 TEST(OpenNI2Driver, OniOverUdpmFramesUnchanged) {
   const std::string url = "udpm://239.255.76.67:7689?ttl=0&recv_buf_size=4194304";
-  if (!ensure_multicast(url)) GTEST_SKIP() << "UDP multicast does not loop back here (ip route add 224.0.0.0/4 dev lo)";
+  if (!stairs::test::ensure_multicast_loopback(url)) GTEST_SKIP() << stairs::test::kMulticastSkipReason;
   // Recorded speed (30 Hz) and raw 320x240: a paced stream that the driver
   // never has to drop from; --fast would burst frames faster than a loaded
   // receiver drains its UDP buffer, which loses datagrams, not driver frames.
@@ -269,7 +248,7 @@ TEST(OpenNI2Driver, OniOverUdpmFramesUnchanged) {
 
 TEST(OpenNI2Driver, LoopingPlaybackReportsStatusAndStopsCleanlyOnSigterm) {
   const std::string url = "udpm://239.255.76.67:7689?ttl=0&recv_buf_size=4194304";
-  if (!ensure_multicast(url)) GTEST_SKIP() << "UDP multicast does not loop back here (ip route add 224.0.0.0/4 dev lo)";
+  if (!stairs::test::ensure_multicast_loopback(url)) GTEST_SKIP() << stairs::test::kMulticastSkipReason;
   const auto frames = source_frames(160, 120, 10);
   const std::string oni = write_oni(frames, "loop.oni"), log = temp_path("loop.lcmlog"), out = temp_path("loop.txt");
   lcm::LCM lcm(url);
@@ -340,7 +319,7 @@ TEST(OpenNI2Driver, StalledSourceIsReportedAndReopened) {
 // to frames the driver published (source_seq, source_utime).
 TEST(OpenNI2Driver, OniThroughPerception) {
   const std::string url = "udpm://239.255.76.67:7690?ttl=0&recv_buf_size=4194304";
-  if (!ensure_multicast(url)) GTEST_SKIP() << "UDP multicast does not loop back here (ip route add 224.0.0.0/4 dev lo)";
+  if (!stairs::test::ensure_multicast_loopback(url)) GTEST_SKIP() << stairs::test::kMulticastSkipReason;
   const auto frames = source_frames(640, 480, 60);
   const std::string oni = write_oni(frames, "chain.oni"), out = temp_path("chain.txt"),
                     perception_out = temp_path("perception.txt");

@@ -1,5 +1,6 @@
 // stairs-sim publishing over real LCM (UDP multicast on loopback, two
 // processes): every depth frame has its ground truth with the same utime and seq.
+#include "tests/support/multicast.hpp"
 #include "common/lcm_bridge.hpp"
 
 #include <lcm/lcm-cpp.hpp>
@@ -14,23 +15,6 @@
 namespace {
 
 const std::string kUrl = "udpm://239.255.76.67:7689?ttl=0&recv_buf_size=4194304";
-
-bool multicast_loopback_works() {
-  lcm::LCM lcm(kUrl);
-  if (!lcm.good()) return false;
-  bool got = false;
-  struct H {
-    bool* got;
-    void on(const lcm::ReceiveBuffer*, const std::string&) { *got = true; }
-  } h{&got};
-  lcm.subscribe("SIM_PROBE", &H::on, &h);
-  const uint8_t byte = 1;
-  for (int i = 0; i < 10 && !got; ++i) {
-    lcm.publish("SIM_PROBE", &byte, 1);
-    lcm.handleTimeout(100);
-  }
-  return got;
-}
 
 struct Collector {
   std::map<int32_t, int64_t> depth, truth;  // seq -> utime
@@ -55,10 +39,7 @@ struct Collector {
 }  // namespace
 
 TEST(SimPublish, DepthAndTruthPairedOverUdpm) {
-  if (!multicast_loopback_works()) {
-    if (std::system("ip route add 224.0.0.0/4 dev lo 2>/dev/null") != 0 || !multicast_loopback_works())
-      GTEST_SKIP() << "UDP multicast does not loop back here (run as root: ip route add 224.0.0.0/4 dev lo)";
-  }
+  if (!stairs::test::ensure_multicast_loopback(kUrl)) GTEST_SKIP() << stairs::test::kMulticastSkipReason;
   lcm::LCM sub(kUrl);
   ASSERT_TRUE(sub.good());
   Collector c;

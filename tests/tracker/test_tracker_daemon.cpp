@@ -1,6 +1,7 @@
 // stairs-tracker as a real subprocess over UDP multicast on loopback:
 // observations in, one model out per observation, a garbage message counted
 // as invalid, the daemon survives it and stops cleanly on SIGTERM.
+#include "tests/support/multicast.hpp"
 #include "common/lcm_bridge.hpp"
 #include "synthetic_stair.hpp"
 
@@ -19,23 +20,6 @@ using namespace stairs;
 namespace {
 
 const std::string kUrl = "udpm://239.255.76.67:7689?ttl=0&recv_buf_size=4194304";
-
-bool multicast_loopback_works() {
-  lcm::LCM lcm(kUrl);
-  if (!lcm.good()) return false;
-  bool got = false;
-  struct H {
-    bool* got;
-    void on(const lcm::ReceiveBuffer*, const std::string&) { *got = true; }
-  } h{&got};
-  lcm.subscribe("STAIRS_TRK_PROBE", &H::on, &h);
-  const uint8_t byte = 1;
-  for (int i = 0; i < 10 && !got; ++i) {
-    lcm.publish("STAIRS_TRK_PROBE", &byte, 1);
-    lcm.handleTimeout(100);
-  }
-  return got;
-}
 
 struct Received {
   int models = 0, bad_models = 0, max_fused = 0, steps = 0;
@@ -71,10 +55,7 @@ void pump(lcm::LCM& lcm, int ms) {
 }  // namespace
 
 TEST(TrackerDaemon, ObservationsInModelsOutGarbageCounted) {
-  if (!multicast_loopback_works()) {
-    if (std::system("ip route add 224.0.0.0/4 dev lo 2>/dev/null") != 0 || !multicast_loopback_works())
-      GTEST_SKIP() << "UDP multicast does not loop back here (run as root: ip route add 224.0.0.0/4 dev lo)";
-  }
+  if (!stairs::test::ensure_multicast_loopback(kUrl)) GTEST_SKIP() << stairs::test::kMulticastSkipReason;
   const std::string exe = std::string(STAIRS_BINARY_DIR) + "/bin/stairs-tracker";
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);
