@@ -105,7 +105,7 @@ TEST(Sequence, RoundTrip) {
 
 TEST(Sequence, ReadsTheRealDataDirectories) {
   for (const char* name : {"kinect1_thesis_up", "kinect2_lab_up"}) {
-    const fs::path dir = fs::path(STAIRS_SOURCE_DIR) / ".." / "shared" / "realdata" / name;
+    const fs::path dir = fs::path(STAIRS_REALDATA_DIR) / name;
     if (!fs::exists(dir)) GTEST_SKIP() << dir << " not present";
     SequenceReader r(dir.string());
     EXPECT_EQ(r.size(), 2u);

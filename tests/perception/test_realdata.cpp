@@ -14,7 +14,7 @@
 namespace stairs {
 namespace {
 
-const std::string kRealdata = "/work/shared/realdata/";
+const std::string kRealdata = STAIRS_REALDATA_DIR "/";
 
 void print(const std::string& name, size_t i, const Observation& o) {
   std::printf("%s[%zu]: valid=%d pitch=%.1f roll=%.1f height=%.3f dir=%d steps=%zu latency=%.2fms\n", name.c_str(), i,

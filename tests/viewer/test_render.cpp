@@ -276,7 +276,7 @@ TEST(ViewerRender, SampleLogThroughThePipelineShowsTreadsOnTreads) {
 }
 
 TEST(ViewerRender, OneRealFrame) {
-  const std::string seq = "/work/shared/realdata/kinect2_lab_up";
+  const std::string seq = STAIRS_REALDATA_DIR "/kinect2_lab_up";
   if (!fs::is_directory(seq)) GTEST_SKIP() << seq << " not present";
   const fs::path dir = scratch("real");
   ASSERT_EQ(run_viewer("--render " + seq + " --frame 1 --out " + (dir / "real.png").string(), (dir / "err").string()),
