@@ -86,18 +86,6 @@ TEST(ViewerImagePanel, WithoutDepthSaysSo) {
   EXPECT_GT(cv::countNonZero(panel.reshape(1) > 200), 50);  // the message's text
 }
 
-// Risers of the model profile counted as separate blobs of the riser colour.
-int riser_blobs(const cv::Mat& panel) {
-  cv::Mat mask(panel.size(), CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < panel.rows; ++v)
-    for (int u = 0; u < panel.cols; ++u) mask.at<uint8_t>(v, u) = riser_tinted(panel.at<cv::Vec3b>(v, u)) ? 255 : 0;
-  cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8);
-  int blobs = 0;
-  for (int i = 1; i < n; ++i) blobs += stats.at<int>(i, cv::CC_STAT_AREA) >= 8;
-  return blobs;
-}
-
 TEST(ViewerSideView, OneProfileSegmentPerModelStep) {
   const ViewerConfig cfg;
   for (int n : {1, 3, 6}) {

@@ -32,17 +32,6 @@ using namespace stairs::viewer::test;
 
 namespace {
 
-int riser_blobs(const cv::Mat& img) {
-  cv::Mat mask(img.size(), CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < img.rows; ++v)
-    for (int u = 0; u < img.cols; ++u) mask.at<uint8_t>(v, u) = riser_tinted(img.at<cv::Vec3b>(v, u)) ? 255 : 0;
-  cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8);
-  int blobs = 0;
-  for (int i = 1; i < n; ++i) blobs += stats.at<int>(i, cv::CC_STAT_AREA) >= 8;
-  return blobs;
-}
-
 std::string read_text(const fs::path& p) {
   std::ifstream f(p);
   std::stringstream s;

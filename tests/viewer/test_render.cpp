@@ -49,17 +49,6 @@ std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-int riser_blobs(const cv::Mat& panel) {
-  cv::Mat mask(panel.size(), CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < panel.rows; ++v)
-    for (int u = 0; u < panel.cols; ++u) mask.at<uint8_t>(v, u) = riser_tinted(panel.at<cv::Vec3b>(v, u)) ? 255 : 0;
-  cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8);
-  int blobs = 0;
-  for (int i = 1; i < n; ++i) blobs += stats.at<int>(i, cv::CC_STAT_AREA) >= 8;
-  return blobs;
-}
-
 // Depth, truth, observation and model for 5 frames; the model grows a step per
 // frame. A corrupt observation sits in the middle.
 fs::path write_recorded_log(const fs::path& dir) {
