@@ -7,6 +7,20 @@ namespace {
 
 using V = Eigen::Vector3d;
 
+// Half the stair width and the room's lateral bounds: a side wall stands at the
+// stair's edge, an open side leaves floor out to the room wall.
+struct Sides {
+  double w, y_left, y_right;
+  bool left_wall, right_wall;
+};
+
+Sides sides(const Scene& s) {
+  const double w = 0.5 * s.width_m;
+  const bool left_wall = s.walls == Walls::Left || s.walls == Walls::Both;
+  const bool right_wall = s.walls == Walls::Right || s.walls == Walls::Both;
+  return {w, left_wall ? w : 0.5 * s.room_width_m, right_wall ? -w : -0.5 * s.room_width_m, left_wall, right_wall};
+}
+
 struct Builder {
   std::vector<Face>& faces;
 
@@ -38,6 +52,18 @@ struct Builder {
     z_face(lo.z(), lo.x(), hi.x(), lo.y(), hi.y(), -1);
     z_face(hi.z(), lo.x(), hi.x(), lo.y(), hi.y(), +1);
   }
+  // The room around a flight or ramp that ends at x = end_x, top_z high: the
+  // floor before it and beside it where a side is open, the end and side walls,
+  // and the back wall above the top when there is one.
+  void flight_room(const Scene& s, const Sides& sd, double end_x, double top_z, double wall_top) {
+    z_face(0.0, -s.floor_length_m, 0.0, sd.y_right, sd.y_left, +1);
+    z_face(0.0, 0.0, end_x, sd.w, sd.y_left, +1);
+    z_face(0.0, 0.0, end_x, sd.y_right, -sd.w, +1);
+    x_face(-s.floor_length_m, sd.y_right, sd.y_left, 0.0, wall_top, +1);
+    y_face(sd.y_left, -s.floor_length_m, end_x, 0.0, wall_top, -1);
+    y_face(sd.y_right, -s.floor_length_m, end_x, 0.0, wall_top, +1);
+    if (s.back_wall) x_face(end_x, sd.y_right, sd.y_left, top_z, wall_top, -1);
+  }
   // The room around everything: floor from x0 to x1 (z = 0), walls at its ends
   // and sides, all facing inwards.
   void room(double x0, double x1, double y_right, double y_left, double z_top, bool far_wall) {
@@ -51,23 +77,14 @@ struct Builder {
 
 void build_stairs(const Scene& s, Builder& b) {
   const std::vector<StepGeometry> steps = step_geometry(s);
-  const double w = 0.5 * s.width_m;
-  const bool left_wall = s.walls == Walls::Left || s.walls == Walls::Both;
-  const bool right_wall = s.walls == Walls::Right || s.walls == Walls::Both;
-  const double y_left = left_wall ? w : 0.5 * s.room_width_m;
-  const double y_right = right_wall ? -w : -0.5 * s.room_width_m;
+  const Sides sd = sides(s);
+  const double w = sd.w;
+  const bool left_wall = sd.left_wall, right_wall = sd.right_wall;
   const double end_x = steps.back().end_x_m;
   const double top_z = steps.back().top_z_m;
   const double wall_top = top_z + s.wall_height_m;
 
-  // Floor before the flight, and beside it where a side is open.
-  b.z_face(0.0, -s.floor_length_m, 0.0, y_right, y_left, +1);
-  b.z_face(0.0, 0.0, end_x, w, y_left, +1);
-  b.z_face(0.0, 0.0, end_x, y_right, -w, +1);
-  b.x_face(-s.floor_length_m, y_right, y_left, 0.0, wall_top, +1);
-  b.y_face(y_left, -s.floor_length_m, end_x, 0.0, wall_top, -1);
-  b.y_face(y_right, -s.floor_length_m, end_x, 0.0, wall_top, +1);
-  if (s.back_wall) b.x_face(end_x, y_right, y_left, top_z, wall_top, -1);
+  b.flight_room(s, sd, end_x, top_z, wall_top);
 
   const double n = s.nosing_m;
   for (size_t i = 0; i < steps.size(); ++i) {
@@ -90,22 +107,14 @@ void build_stairs(const Scene& s, Builder& b) {
 }
 
 void build_ramp(const Scene& s, Builder& b) {
-  const double w = 0.5 * s.width_m;
-  const bool left_wall = s.walls == Walls::Left || s.walls == Walls::Both;
-  const bool right_wall = s.walls == Walls::Right || s.walls == Walls::Both;
-  const double y_left = left_wall ? w : 0.5 * s.room_width_m;
-  const double y_right = right_wall ? -w : -0.5 * s.room_width_m;
+  const Sides sd = sides(s);
+  const double w = sd.w;
+  const bool left_wall = sd.left_wall, right_wall = sd.right_wall;
   const double L = s.ramp_length_m, H = s.ramp_height_m;
   const double end_x = L + s.ramp_landing_m;
   const double wall_top = H + s.wall_height_m;
-  b.z_face(0.0, -s.floor_length_m, 0.0, y_right, y_left, +1);
-  b.z_face(0.0, 0.0, end_x, w, y_left, +1);
-  b.z_face(0.0, 0.0, end_x, y_right, -w, +1);
-  b.x_face(-s.floor_length_m, y_right, y_left, 0.0, wall_top, +1);
-  b.y_face(y_left, -s.floor_length_m, end_x, 0.0, wall_top, -1);
-  b.y_face(y_right, -s.floor_length_m, end_x, 0.0, wall_top, +1);
-  if (s.back_wall) b.x_face(end_x, y_right, y_left, H, wall_top, -1);
-  else b.x_face(end_x, -w, w, 0.0, H, +1);
+  b.flight_room(s, sd, end_x, H, wall_top);
+  if (!s.back_wall) b.x_face(end_x, -w, w, 0.0, H, +1);
   b.add({0, -w, 0}, {L, -w, H}, {L, w, H}, {0, w, 0}, V(-H, 0, L).normalized());
   b.z_face(H, L, end_x, -w, w, +1);
   for (double side : {+1.0, -1.0}) {
