@@ -27,6 +27,10 @@ struct PerceptionConfig {
   // --- gravity (Algorithm 4, weighted horizontal normals)
   float max_tilt_from_image_up_deg = 80.0f;  // horizontal-plane candidates vs. image up
   float parallel_deg = 4.0f;                 // normals this close count as parallel
+  float gravity_prior_max_deg = 20.0f;        // up may turn this much from the previous frame's
+  double gravity_prior_max_gap_s = 1.0;       // s; after a longer gap the previous up is forgotten
+  float gravity_min_support_fraction = 0.1f;  // with a prior: treads with less support than this
+                                              // fraction of the largest vertical family yield to it
   float beneath_max_distance_m = 2.0f;       // m; nearest horizontal surface ahead used for height
 
   // --- plane_geometry
@@ -45,7 +49,10 @@ struct PerceptionConfig {
   float step_rule_max_m = 0.65f;      // 2R + T upper bound
   float din_tolerance = 0.4f;         // relative tolerance on every DIN bound
   float landing_min_depth_m = 0.50f;  // a tread deeper than this is a landing
+  float min_step_width_m = 0.3f;      // m; narrower horizontal planes (chair seats) are no treads
   float max_lateral_gap_m = 0.5f;     // m; consecutive treads must overlap laterally up to this gap
+  float min_riser_seen_fraction = 0.25f;  // of the median rise: a riser standing on the last
+                                          // tread, its top cut off by the view, still gives a step
   int min_steps = 2;                  // fewer detected steps = no staircase
 
   // --- observation

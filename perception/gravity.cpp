@@ -1,33 +1,73 @@
 #include "perception/gravity.hpp"
 
 #include <cmath>
+#include <vector>
 
 namespace stairs {
 
-std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const PerceptionConfig& cfg) {
+namespace {
+
+struct Family {
+  Eigen::Vector3f normal;  // support-weighted mean: large planes have the best-determined normals
+  float support;           // cells
+};
+
+// The best-supported family of parallel segment normals among those `keep` accepts.
+template <class Keep>
+std::optional<Family> best_family(const std::vector<Segment>& segments, float cos_par, Keep keep) {
+  Eigen::Vector3f best = Eigen::Vector3f::Zero();
+  float best_support = 0;
+  for (const Segment& c : segments) {
+    if (!keep(c.normal)) continue;
+    Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+    float support = 0;
+    for (const Segment& s : segments)
+      if (s.normal.dot(c.normal) > cos_par) {
+        sum += static_cast<float>(s.cells.size()) * s.normal;
+        support += static_cast<float>(s.cells.size());
+      }
+    if (support > best_support) {
+      best = sum;
+      best_support = support;
+    }
+  }
+  if (best_support == 0.0f) return std::nullopt;
+  return Family{best.normalized(), best_support};
+}
+
+}  // namespace
+
+std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const PerceptionConfig& cfg,
+                                           const std::optional<Eigen::Vector3f>& prior) {
   const float deg = static_cast<float>(M_PI) / 180.0f;
   const float cos_tilt = std::cos(cfg.max_tilt_from_image_up_deg * deg);
   const float cos_par = std::cos(cfg.parallel_deg * deg);
+  const float cos_prior = std::cos(cfg.gravity_prior_max_deg * deg);
   const Eigen::Vector3f image_up(0, -1, 0);
-  double best_score = 0;
-  int best = -1;
-  for (size_t i = 0; i < segments.size(); ++i) {
-    const Eigen::Vector3f& ni = segments[i].normal;
-    if (ni.dot(image_up) < cos_tilt) continue;
-    double score = 0;
-    for (const Segment& s : segments)
-      if (s.normal.dot(ni) > cos_par) score += static_cast<double>(s.cells.size());
-    if (score > best_score) {
-      best_score = score;
-      best = static_cast<int>(i);
-    }
-  }
-  if (best < 0) return std::nullopt;
-  // Weighted by support: large planes have the best-determined normals.
-  Eigen::Vector3f up = Eigen::Vector3f::Zero();
-  for (const Segment& s : segments)
-    if (s.normal.dot(segments[best].normal) > cos_par) up += static_cast<float>(s.cells.size()) * s.normal;
-  return up.normalized();
+  // Treads and risers both qualify on a stair; the previous frame's up tells
+  // them apart when the risers dominate (a robot looking up a flight).
+  const auto horizontal = best_family(segments, cos_par, [&](const Eigen::Vector3f& n) {
+    return n.dot(image_up) >= cos_tilt && (!prior || n.dot(*prior) >= cos_prior);
+  });
+  if (!prior) return horizontal ? std::optional(horizontal->normal) : std::nullopt;
+  // Vertical planes (risers, walls) fix up too, perpendicular to their
+  // normals: used when the treads near the prior are missing or too small to
+  // trust beside them (a robot looking up a flight sees thin treads, if any).
+  const float sin_prior = std::sin(cfg.gravity_prior_max_deg * deg);
+  auto vertical = [&](const Eigen::Vector3f& n) { return std::abs(n.dot(*prior)) < sin_prior; };
+  const auto v1 = best_family(segments, cos_par, vertical);
+  if (horizontal && (!v1 || horizontal->support >= cfg.gravity_min_support_fraction * v1->support))
+    return horizontal->normal;
+  if (!v1) return std::nullopt;
+  const float cos_distinct = std::cos(30.0f * deg);
+  const auto v2 = best_family(segments, cos_par, [&](const Eigen::Vector3f& n) {
+    return vertical(n) && std::abs(n.dot(v1->normal)) < cos_distinct;
+  });
+  Eigen::Vector3f up = v2 ? v1->normal.cross(v2->normal) : *prior - prior->dot(v1->normal) * v1->normal;
+  if (up.dot(*prior) < 0) up = -up;
+  up.normalize();
+  if (up.dot(*prior) < cos_prior) return std::nullopt;
+  return up;
 }
 
 CameraPose pose_from_up(const Eigen::Vector3f& up_optical) {

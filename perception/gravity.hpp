@@ -11,8 +11,11 @@ namespace stairs {
 // Up direction in the optical frame, or nothing when no plane can be horizontal.
 // Candidates are segment normals within max_tilt of image up (-y); each scores
 // the support of the segments parallel to it; the best one's parallel set
-// gives the support-weighted mean normal.
-std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const PerceptionConfig& cfg);
+// gives the support-weighted mean normal. With a prior (the previous frame's
+// up), only candidates within gravity_prior_max_deg of it count; without one
+// there, up is perpendicular to the vertical planes (risers, walls).
+std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const PerceptionConfig& cfg,
+                                           const std::optional<Eigen::Vector3f>& prior = std::nullopt);
 
 // Pose from the up vector: pitch, roll (DESIGN.md conventions) and
 // gravity_rotation (optical -> x forward, y left, z up). Height and distance

@@ -86,7 +86,13 @@ Observation Pipeline::process(const DepthImage& frame) {
   clock.mark("normals");
   std::vector<Segment> segments = grow_regions(grid_, cfg_, frame.K.width, frame.K.height, labels_);
   clock.mark("region_growing");
-  const auto up = estimate_up(segments, cfg_);
+  const int64_t gap_us = frame.utime - prior_utime_;
+  if (gap_us < 0 || gap_us > cfg_.gravity_prior_max_gap_s * 1e6) up_prior_.reset();
+  const auto up = estimate_up(segments, cfg_, up_prior_);
+  if (up) {
+    up_prior_ = up;
+    prior_utime_ = frame.utime;
+  }
   clock.mark("gravity");
   if (!up) {
     obs.status = "no horizontal plane: pose unknown";
@@ -98,7 +104,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   PlaneSet ps = plane_geometry(grid_, segments, R, cfg_);
   obs.camera.height_m = camera_height(ps, cfg_);
   clock.mark("plane_geometry");
-  const std::vector<Level> levels = tread_levels(ps);
+  const std::vector<Level> levels = tread_levels(ps, cfg_);
   clock.mark("steps");
   const StairChain chain = best_chain(levels, cfg_);
   std::vector<Step> steps = steps_from_chain(ps, chain);

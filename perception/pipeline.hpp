@@ -6,6 +6,7 @@
 #include "perception/config.hpp"
 #include "perception/normals.hpp"
 
+#include <optional>
 #include <vector>
 
 namespace stairs {
@@ -14,7 +15,9 @@ class Pipeline {
  public:
   explicit Pipeline(PerceptionConfig cfg = {});
   // Never throws on bad input: an unusable frame gives camera.valid = false,
-  // direction None and a status naming the reason.
+  // direction None and a status naming the reason. Frames of one stream come
+  // in order: the previous frame's up (within gravity_prior_max_gap_s) is the
+  // gravity prior.
   Observation process(const DepthImage& frame);
   const PerceptionConfig& config() const { return cfg_; }
 
@@ -22,6 +25,8 @@ class Pipeline {
   PerceptionConfig cfg_;
   NormalGrid grid_;          // reused buffers
   std::vector<int> labels_;  // reused buffers
+  std::optional<Eigen::Vector3f> up_prior_;  // optical frame, of the frame at prior_utime_
+  int64_t prior_utime_ = 0;
 };
 
 }  // namespace stairs

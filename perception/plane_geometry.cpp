@@ -136,7 +136,7 @@ PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segment
   });
   if (static_cast<int>(all.size()) > cfg.max_planes) all.resize(cfg.max_planes);
 
-  std::vector<float> ss, ts, zs;
+  std::vector<float> ss, ts, zs, zs_all;
   std::vector<int> cells;
   for (const Group& grp : all) {
     cells.clear();
@@ -157,6 +157,7 @@ PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segment
       zs.push_back(q.z());
     }
     p.centroid = centroid / static_cast<float>(cells.size());
+    zs_all = zs;
     PlaneExtent e;
     const float lo = cfg.extent_percentile, hi = 1.0f - cfg.extent_percentile;
     e.s_min = percentile(ss, lo);
@@ -165,6 +166,12 @@ PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segment
     e.t_max = percentile(ts, hi);
     e.z_min = percentile(zs, lo);
     e.z_max = percentile(zs, hi);
+    // Normals exist from normal_radius_cells inside the grid: a plane whose
+    // top reaches the upper margin may continue above the view.
+    const int margin = cfg.normal_radius_cells + 1;
+    for (size_t k = 0; k < cells.size() && e.top_in_view; ++k) {
+      e.top_in_view = zs_all[k] < e.z_max - 0.02f || cells[k] / g.width > margin;
+    }
     e.s_mean = cy * p.centroid.x() + sy * p.centroid.y();
     e.z_mean = p.centroid.z();
     const bool tread = p.kind == PlaneKind::Tread;

@@ -55,7 +55,7 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
   if (const int r = riser_at(ps, top.s_max, top.z, true); r >= 0) {
     const PlaneExtent& e = ps.extents[r];
     const double seen = e.z_max - top.z;
-    if (seen < 0.5 * median) return;  // too little of it in view to place a nosing
+    if (seen < cfg.min_riser_seen_fraction * median) return;  // too little in view to place a nosing
     Step s;
     s.riser_plane = r;
     s.riser_height_m = din_riser_ok(seen, cfg) && seen > median - 0.03 ? seen : median;

@@ -5,12 +5,26 @@
 
 namespace stairs {
 
-std::vector<Level> tread_levels(const PlaneSet& ps) {
+std::vector<Level> tread_levels(const PlaneSet& ps, const PerceptionConfig& cfg) {
   std::vector<Level> levels;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
-    if (ps.planes[i].kind != PlaneKind::Tread) continue;
     const PlaneExtent& e = ps.extents[i];
+    if (ps.planes[i].kind != PlaneKind::Tread || e.t_max - e.t_min < cfg.min_step_width_m) continue;
     levels.push_back({static_cast<int>(i), e.z_mean, e.s_min, e.s_max, e.t_min, e.t_max});
+  }
+  // Treads seen edge-on (a camera below or level with them) are too thin to
+  // segment, but the riser below each one is in view: its top edge is the
+  // tread's front ("treads between risers", thesis 4.5).
+  const size_t n_treads = levels.size();
+  constexpr float kSameLevel_m = 0.04f, kBehind_m = 0.1f, kAhead_m = 0.4f;
+  for (size_t i = 0; i < ps.planes.size(); ++i) {
+    const PlaneExtent& e = ps.extents[i];
+    if (ps.planes[i].kind != PlaneKind::Riser || !e.top_in_view || e.t_max - e.t_min < cfg.min_step_width_m) continue;
+    bool seen = false;
+    for (size_t k = 0; k < n_treads && !seen; ++k)
+      seen = std::abs(levels[k].z - e.z_max) < kSameLevel_m && levels[k].s_max > e.s_mean - kBehind_m &&
+             levels[k].s_min < e.s_mean + kAhead_m;
+    if (!seen) levels.push_back({-1, e.z_max, e.s_mean, e.s_mean, e.t_min, e.t_max});
   }
   std::sort(levels.begin(), levels.end(), [](const Level& a, const Level& b) { return a.z < b.z; });
   return levels;

@@ -13,8 +13,9 @@ struct Level {
   float z = 0, s_min = 0, s_max = 0, t_min = 0, t_max = 0;
 };
 
-// Levels of the tread planes, lowest first.
-std::vector<Level> tread_levels(const PlaneSet& planes);
+// Levels of the tread planes and of the tops of risers whose tread is not
+// segmented, lowest first; narrower than min_step_width_m are not steps.
+std::vector<Level> tread_levels(const PlaneSet& planes, const PerceptionConfig& cfg);
 
 // A staircase hypothesis: a chain of levels in walking order (`Up`: floor
 // first then each higher tread; `Down`: the level the camera looks from first).

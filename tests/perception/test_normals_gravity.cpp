@@ -98,4 +98,62 @@ TEST(PerceptionGravity, NoHorizontalPlaneNoPose) {
 }
 
 }  // namespace
+// Segments of a stair seen by a camera at `pitch_deg`: `tread_cells` of
+// horizontal planes, risers facing the camera and a side wall.
+std::vector<Segment> stair_segments(double pitch_deg, size_t tread_cells, size_t riser_cells, size_t wall_cells) {
+  const Eigen::Matrix3d Rt = test::optical_to_world(pitch_deg, 0).transpose();
+  auto segment = [&](const Eigen::Vector3d& world_normal, size_t cells) {
+    Segment s;
+    s.normal = (Rt * world_normal).cast<float>();
+    s.cells.assign(cells, 0);
+    return s;
+  };
+  std::vector<Segment> segs;
+  if (tread_cells) segs.push_back(segment(Eigen::Vector3d::UnitZ(), tread_cells));
+  if (riser_cells) segs.push_back(segment(-Eigen::Vector3d::UnitX(), riser_cells));
+  if (wall_cells) segs.push_back(segment(-Eigen::Vector3d::UnitY(), wall_cells));
+  return segs;
+}
+
+Eigen::Vector3f true_up(double pitch_deg) {
+  return (test::optical_to_world(pitch_deg, 0).transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
+}
+
+TEST(PerceptionGravity, PriorTellsTreadsFromDominantRisers) {
+  // A robot looking up a flight at +15 deg: the risers are 75 deg from image
+  // up and dominate; alone, the frame is ambiguous and the risers win.
+  const auto segs = stair_segments(15, 2000, 10000, 0);
+  const auto alone = estimate_up(segs, PerceptionConfig{});
+  ASSERT_TRUE(alone.has_value());
+  EXPECT_LT(alone->dot(true_up(15)), 0.5f);
+  const auto tracked = estimate_up(segs, PerceptionConfig{}, true_up(10));
+  ASSERT_TRUE(tracked.has_value());
+  EXPECT_GT(tracked->dot(true_up(15)), std::cos(0.1 * M_PI / 180));
+}
+
+TEST(PerceptionGravity, VerticalPlanesFixUpWhenTreadsAreMissing) {
+  const auto segs = stair_segments(15, 0, 10000, 3000);
+  const auto up = estimate_up(segs, PerceptionConfig{}, true_up(9));
+  ASSERT_TRUE(up.has_value());
+  EXPECT_GT(up->dot(true_up(15)), std::cos(0.1 * M_PI / 180));
+  // Risers alone keep the prior's roll and take their pitch.
+  const auto risers_only = estimate_up(stair_segments(15, 0, 10000, 0), PerceptionConfig{}, true_up(9));
+  ASSERT_TRUE(risers_only.has_value());
+  EXPECT_GT(risers_only->dot(true_up(15)), std::cos(0.1 * M_PI / 180));
+  // A plane neither near the prior nor near vertical under it gives nothing.
+  EXPECT_FALSE(estimate_up(stair_segments(15, 0, 10000, 0), PerceptionConfig{}, true_up(-35)).has_value());
+}
+
+TEST(PerceptionGravity, TinyTreadsYieldToTheVerticalPlanes) {
+  // 100 cells of noise near the prior against 10000 of risers and walls.
+  auto segs = stair_segments(15, 0, 10000, 3000);
+  Segment noise;
+  noise.normal = true_up(2);  // 13 deg off: a badly determined small patch
+  noise.cells.assign(100, 0);
+  segs.push_back(noise);
+  const auto up = estimate_up(segs, PerceptionConfig{}, true_up(9));
+  ASSERT_TRUE(up.has_value());
+  EXPECT_GT(up->dot(true_up(15)), std::cos(0.1 * M_PI / 180));
+}
+
 }  // namespace stairs

@@ -103,5 +103,43 @@ TEST(PerceptionSteps, SingleCurbIsNoStaircase) {
   EXPECT_TRUE(o.steps.empty());
 }
 
+TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
+  // A camera level with the flight sees the floor and the risers, not the treads.
+  PlaneSet ps;
+  auto add = [&](PlaneKind kind, PlaneExtent e) {
+    Plane p;
+    p.kind = kind;
+    ps.planes.push_back(p);
+    ps.extents.push_back(e);
+  };
+  add(PlaneKind::Tread, {0.3f, 1.0f, -0.5f, 0.5f, -0.45f, -0.45f, 0.65f, -0.45f});
+  for (int k = 0; k < 3; ++k) {
+    const float s = 1.0f + 0.25f * k, z0 = -0.45f + 0.18f * k;
+    add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.18f, s, z0 + 0.09f});
+  }
+  PlaneExtent cut{1.75f, 1.75f, -0.5f, 0.5f, 0.09f, 0.15f, 1.75f, 0.12f};
+  cut.top_in_view = false;  // continues above the image: its top is no nosing
+  add(PlaneKind::Riser, cut);
+  add(PlaneKind::Riser, {0.6f, 0.6f, 0.2f, 0.26f, -0.45f, -0.27f, 0.6f, -0.36f});  // a chair leg
+  const PerceptionConfig cfg;
+  const std::vector<Level> levels = tread_levels(ps, cfg);
+  ASSERT_EQ(levels.size(), 4u);
+  for (int k = 1; k < 4; ++k) {
+    EXPECT_EQ(levels[k].plane, -1);
+    EXPECT_NEAR(levels[k].z, -0.45f + 0.18f * k, 1e-5);
+    EXPECT_NEAR(levels[k].s_min, 1.0f + 0.25f * (k - 1), 1e-5);
+  }
+  const StairChain chain = best_chain(levels, cfg);
+  EXPECT_EQ(chain.direction, Direction::Up);
+  EXPECT_EQ(chain.steps(), 3);
+  const std::vector<Step> steps = steps_from_chain(ps, chain);
+  ASSERT_EQ(steps.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(steps[k].riser_plane, k + 1);
+    EXPECT_NEAR(steps[k].nosing_m.x(), 1.0 + 0.25 * k, 1e-4);
+    EXPECT_NEAR(*steps[k].riser_height_m, 0.18, 1e-4);
+  }
+}
+
 }  // namespace
 }  // namespace stairs
