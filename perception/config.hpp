@@ -33,6 +33,18 @@ struct PerceptionConfig {
                                               // fraction of the largest vertical family yield to it
   float beneath_max_distance_m = 2.0f;       // m; nearest horizontal surface ahead used for height
 
+  // --- edges_depth_jumps
+  float edge_jump_min_m = 0.05f;        // m; depth step between vertical neighbours that is a jump
+  float edge_jump_ratio = 0.03f;        // of the depth; the jump must exceed this too (noise grows)
+  int edge_gap_cells = 2;               // cells without a measurement a jump may span (shadow)
+  float edge_height_gap_m = 0.02f;      // m; jump points chain into one height group below this
+  float edge_ransac_threshold_m = 0.02f;  // m; RANSAC line inlier distance
+  int edge_ransac_iterations = 100;
+  int edge_min_points = 8;              // jump points of a line
+  int edge_max_lines_per_group = 3;     // lines fitted per height group
+  float edge_max_tilt_deg = 10.0f;      // a step edge is horizontal within this
+  float edge_max_axis_deg = 20.0f;      // and across the stair axis within this
+
   // --- plane_geometry
   float horizontal_tol_deg = 12.0f;   // tread/landing: normal within this of up
   float vertical_tol_deg = 15.0f;     // riser: normal within this of horizontal

@@ -55,6 +55,12 @@ std::optional<double> successor(const Level& a, const Level& b, Direction dir, s
   return dev;
 }
 
+// The tread that `b` adds after `a` is a landing (its depth is known).
+bool is_landing(const Level& a, const Level& b, Direction dir, std::optional<float> a_nosing, const PerceptionConfig& c) {
+  if (dir == Direction::Up) return a_nosing && b.s_min - *a_nosing >= c.landing_min_depth_m;
+  return b.s_max - a.s_max >= c.landing_min_depth_m;
+}
+
 StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction dir, const PerceptionConfig& c) {
   StairChain chain;
   chain.direction = dir;
@@ -80,6 +86,7 @@ StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction 
       }
     }
     if (best < 0) break;
+    if (is_landing(a, levels[best], dir, a_nosing, c)) ++chain.landings;
     used[best] = 1;
     chain.levels.push_back(levels[best]);
     chain.deviation += best_dev;
@@ -94,6 +101,9 @@ StairChain best_chain(const std::vector<Level>& levels, const PerceptionConfig& 
   for (Direction dir : {Direction::Up, Direction::Down})
     for (size_t i = 0; i < levels.size(); ++i) {
       StairChain ch = grow_chain(levels, i, dir, c);
+      // Landings need regular steps around them: a single step and a deep
+      // "tread" is a table or a shelf, not a staircase.
+      if (ch.landings > 0 && ch.steps() - ch.landings < c.min_steps) continue;
       if (ch.steps() > best.steps() || (ch.steps() == best.steps() && ch.deviation < best.deviation))
         best = std::move(ch);
     }

@@ -21,12 +21,15 @@ void cell_means(const DepthImage& frame, const PerceptionConfig& cfg, NormalGrid
   for (int gy = 0; gy < g.height; ++gy) {
     for (int gx = 0; gx < g.width; ++gx) {
       uint32_t sum = 0, n = 0, su = 0, sv = 0;
+      uint16_t d_min = 65535, d_max = 0;
       const int u0 = gx * g.cell_px, v0 = gy * g.cell_px;
       for (int v = v0; v < v0 + g.cell_px; ++v) {
         const uint16_t* row = frame.depth.data() + static_cast<size_t>(v) * K.width;
         for (int u = u0; u < u0 + g.cell_px; ++u) {
           const uint16_t d = row[u];
           if (d >= lo && d <= hi) {
+            d_min = std::min(d_min, d);
+            d_max = std::max(d_max, d);
             sum += d;
             su += u;
             sv += v;
@@ -41,6 +44,11 @@ void cell_means(const DepthImage& frame, const PerceptionConfig& cfg, NormalGrid
         continue;
       }
       const float z = static_cast<float>(sum * frame.depth_scale / n);
+      // A cell across a depth jump would float between both surfaces.
+      if ((d_max - d_min) * frame.depth_scale > cfg.jump_ratio * z) {
+        g.has_point[i] = 0;
+        continue;
+      }
       g.points[i] = back_project(K, static_cast<float>(su) / n, static_cast<float>(sv) / n, z);
       g.has_point[i] = 1;
     }

@@ -1,5 +1,6 @@
 #include "perception/pipeline.hpp"
 
+#include "perception/edges_depth_jumps.hpp"
 #include "perception/gravity.hpp"
 #include "perception/grammar.hpp"
 #include "perception/plane_geometry.hpp"
@@ -104,7 +105,9 @@ Observation Pipeline::process(const DepthImage& frame) {
   PlaneSet ps = plane_geometry(grid_, segments, R, cfg_);
   obs.camera.height_m = camera_height(ps, cfg_);
   clock.mark("plane_geometry");
-  const std::vector<Level> levels = tread_levels(ps, cfg_);
+  const std::vector<JumpEdge> jump_edges = depth_jump_edges(grid_, R, ps.yaw_rad, cfg_);
+  clock.mark("edges_depth_jumps");
+  const std::vector<Level> levels = tread_levels(ps, jump_edges, cfg_);
   clock.mark("steps");
   const StairChain chain = best_chain(levels, cfg_);
   std::vector<Step> steps = steps_from_chain(ps, chain);
@@ -122,6 +125,7 @@ Observation Pipeline::process(const DepthImage& frame) {
     obs.status = "no staircase";
   }
   obs.planes = std::move(ps.planes);
+  for (const JumpEdge& j : jump_edges) obs.edges.push_back(j.edge);
   clock.finish();
   return obs;
 }

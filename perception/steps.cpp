@@ -5,7 +5,7 @@
 
 namespace stairs {
 
-std::vector<Level> tread_levels(const PlaneSet& ps, const PerceptionConfig& cfg) {
+std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>& edges, const PerceptionConfig& cfg) {
   std::vector<Level> levels;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
@@ -25,6 +25,15 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const PerceptionConfig& cfg)
       seen = std::abs(levels[k].z - e.z_max) < kSameLevel_m && levels[k].s_max > e.s_mean - kBehind_m &&
              levels[k].s_min < e.s_mean + kAhead_m;
     if (!seen) levels.push_back({-1, e.z_max, e.s_mean, e.s_mean, e.t_min, e.t_max});
+  }
+  // Likewise far treads seen from above are strips too thin for planes, but
+  // their nosings show as depth jumps: the tread ends there.
+  for (const JumpEdge& j : edges) {
+    bool seen = false;
+    for (size_t k = 0; k < n_treads && !seen; ++k)
+      seen = std::abs(levels[k].z - j.z) < kSameLevel_m && levels[k].s_max > j.s - kAhead_m &&
+             levels[k].s_min < j.s + kBehind_m;
+    if (!seen) levels.push_back({-1, j.z, j.s, j.s, j.t_min, j.t_max});
   }
   std::sort(levels.begin(), levels.end(), [](const Level& a, const Level& b) { return a.z < b.z; });
   return levels;

@@ -1,6 +1,7 @@
 // Stage 6a: tread levels from the planes and steps from a chain of levels.
 #pragma once
 
+#include "perception/edges_depth_jumps.hpp"
 #include "perception/plane_geometry.hpp"
 
 #include <vector>
@@ -13,9 +14,11 @@ struct Level {
   float z = 0, s_min = 0, s_max = 0, t_min = 0, t_max = 0;
 };
 
-// Levels of the tread planes and of the tops of risers whose tread is not
-// segmented, lowest first; narrower than min_step_width_m are not steps.
-std::vector<Level> tread_levels(const PlaneSet& planes, const PerceptionConfig& cfg);
+// Levels of the tread planes, of the tops of risers and of the depth-jump
+// edges whose tread is not segmented, lowest first; planes narrower than
+// min_step_width_m are not steps.
+std::vector<Level> tread_levels(const PlaneSet& planes, const std::vector<JumpEdge>& edges,
+                                const PerceptionConfig& cfg);
 
 // A staircase hypothesis: a chain of levels in walking order (`Up`: floor
 // first then each higher tread; `Down`: the level the camera looks from first).
@@ -23,6 +26,7 @@ struct StairChain {
   Direction direction = Direction::None;
   std::vector<Level> levels;
   double deviation = 0;  // summed relative DIN deviation, lower is better
+  int landings = 0;      // treads deeper than landing_min_depth_m
   int steps() const { return levels.empty() ? 0 : static_cast<int>(levels.size()) - 1; }
 };
 

@@ -89,8 +89,8 @@ TEST(PerceptionSteps, SyntheticAscendingStairsEndToEnd) {
     }
   }
   EXPECT_GE(treads, 4);
-  const std::vector<std::string> names = {"normals", "region_growing", "gravity", "plane_geometry",
-                                          "steps",   "grammar",        "reconstruction"};
+  const std::vector<std::string> names = {"normals", "region_growing",    "gravity", "plane_geometry",
+                                          "edges_depth_jumps", "steps", "grammar", "reconstruction"};
   ASSERT_EQ(o.stages.size(), names.size());
   for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(o.stages[i].name, names[i]);
 }
@@ -122,7 +122,7 @@ TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
   add(PlaneKind::Riser, cut);
   add(PlaneKind::Riser, {0.6f, 0.6f, 0.2f, 0.26f, -0.45f, -0.27f, 0.6f, -0.36f});  // a chair leg
   const PerceptionConfig cfg;
-  const std::vector<Level> levels = tread_levels(ps, cfg);
+  const std::vector<Level> levels = tread_levels(ps, {}, cfg);
   ASSERT_EQ(levels.size(), 4u);
   for (int k = 1; k < 4; ++k) {
     EXPECT_EQ(levels[k].plane, -1);
