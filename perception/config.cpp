@@ -34,7 +34,7 @@ PerceptionConfig load_perception_config(const std::string& json_path) {
 #define STAIRS_PERCEPTION_FIELDS(X)                                                                      \
   X(grid_cell_px) X(normal_radius_cells) X(max_depth_m) X(min_depth_m) X(jump_ratio) X(inverse_depth_kink_per_m) X(smooth_normals)   \
   X(grow_angle_deg) X(grow_region_angle_deg) X(grow_distance_m) X(grow_max_distance_m) X(min_plane_px_320) X(max_tilt_from_image_up_deg) X(parallel_deg) X(gravity_prior_max_deg) X(gravity_prior_max_gap_s) X(gravity_min_support_fraction) \
-  X(beneath_max_distance_m) X(edge_jump_min_m) X(edge_jump_ratio) X(edge_gap_cells) X(edge_height_gap_m) X(edge_ransac_threshold_m) X(edge_ransac_iterations) X(edge_min_points) X(edge_max_lines_per_group) X(edge_max_tilt_deg) X(edge_max_axis_deg) X(horizontal_tol_deg) X(vertical_tol_deg) X(merge_bin_m) X(merge_gap_m)      \
+  X(beneath_view_edge_margin_m) X(beneath_view_edge_tolerance) X(edge_jump_min_m) X(edge_jump_ratio) X(edge_gap_cells) X(edge_height_gap_m) X(edge_ransac_threshold_m) X(edge_ransac_iterations) X(edge_min_points) X(edge_max_lines_per_group) X(edge_max_tilt_deg) X(edge_max_axis_deg) X(horizontal_tol_deg) X(vertical_tol_deg) X(merge_bin_m) X(merge_gap_m)      \
   X(extent_percentile) X(riser_min_m) X(riser_max_m) X(tread_min_m) X(tread_max_m) X(step_rule_min_m)    \
   X(step_rule_max_m) X(din_tolerance) X(landing_min_depth_m) X(min_step_width_m) X(max_lateral_gap_m) X(min_riser_seen_fraction) X(min_steps)           \
   X(max_sample_points) X(max_other_points) X(max_planes)

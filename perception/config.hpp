@@ -31,7 +31,9 @@ struct PerceptionConfig {
   double gravity_prior_max_gap_s = 1.0;       // s; after a longer gap the previous up is forgotten
   float gravity_min_support_fraction = 0.1f;  // with a prior: treads with less support than this
                                               // fraction of the largest vertical family yield to it
-  float beneath_max_distance_m = 2.0f;       // m; nearest horizontal surface ahead used for height
+  float beneath_view_edge_margin_m = 0.1f;   // m; a surface whose near edge is this close to where
+  float beneath_view_edge_tolerance = 0.15f;  // (+ this fraction) the image's bottom row meets its
+                                              // height runs on beneath the camera
 
   // --- edges_depth_jumps
   float edge_jump_min_m = 0.05f;        // m; depth step between vertical neighbours that is a jump

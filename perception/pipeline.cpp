@@ -42,32 +42,25 @@ bool usable(const DepthImage& f, std::string& why) {
   return true;
 }
 
-// Height above the horizontal surface beneath. That surface is rarely in view
-// (a Kinect at pitch -35 deg sees the ground from ~0.6 m ahead), so it is the
-// nearest horizontal surface ahead, unless a riser stands in front of that
-// surface: then the camera is over the surface at the riser's foot.
-std::optional<double> camera_height(const PlaneSet& ps, const PerceptionConfig& cfg) {
-  int best = -1;
-  float best_s = cfg.beneath_max_distance_m;
-  for (size_t i = 0; i < ps.planes.size(); ++i) {
-    if (ps.planes[i].kind != PlaneKind::Tread) continue;
-    const PlaneExtent& e = ps.extents[i];
-    if (e.z_mean >= 0) continue;  // above the camera
-    const float s = std::max(0.0f, e.s_min);
-    if (s < best_s) {
-      best_s = s;
-      best = static_cast<int>(i);
-    }
-  }
-  if (best < 0) return std::nullopt;
-  const PlaneExtent* riser = nullptr;
+// Height above the horizontal surface beneath: the surface below the camera
+// whose near edge is where the image's bottom row meets its height (it runs
+// on towards the camera; a table top ends farther out); of several, the
+// lowest (the floor beside a table). None when no such surface is in view:
+// on a flight the tread beneath is out of view, and the tracker's model
+// knows the height there.
+std::optional<double> camera_height(const PlaneSet& ps, const Intrinsics& K, double pitch_deg,
+                                    const PerceptionConfig& cfg) {
+  const double below_rad = -pitch_deg * M_PI / 180.0 + std::atan((K.height - 1 - K.cy) / K.fy);
+  if (below_rad <= 0) return std::nullopt;
+  std::optional<double> height;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
-    if (ps.planes[i].kind == PlaneKind::Riser && e.s_mean > 0 && e.s_mean < best_s && e.z_min < 0 &&
-        (!riser || e.s_mean < riser->s_mean))
-      riser = &e;
+    if (ps.planes[i].kind != PlaneKind::Tread || e.z_mean >= 0) continue;
+    const double view_edge_m = below_rad >= M_PI / 2 ? 0.0 : -e.z_mean / std::tan(below_rad);
+    if (e.s_min < view_edge_m * (1 + cfg.beneath_view_edge_tolerance) + cfg.beneath_view_edge_margin_m)
+      height = std::max(height.value_or(0.0), -static_cast<double>(e.z_mean));
   }
-  return -static_cast<double>(riser ? riser->z_min : ps.extents[best].z_mean);
+  return height;
 }
 
 }  // namespace
@@ -103,7 +96,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   obs.camera = pose_from_up(*up);
   const Eigen::Matrix3f R = obs.camera.gravity_rotation.toRotationMatrix().cast<float>();
   PlaneSet ps = plane_geometry(grid_, segments, R, cfg_);
-  obs.camera.height_m = camera_height(ps, cfg_);
+  obs.camera.height_m = camera_height(ps, frame.K, obs.camera.pitch_deg, cfg_);
   clock.mark("plane_geometry");
   const std::vector<JumpEdge> jump_edges = depth_jump_edges(grid_, R, ps.yaw_rad, cfg_);
   clock.mark("edges_depth_jumps");

@@ -115,6 +115,7 @@ RunResult replay(const std::string& input, const ReplayOptions& options, const F
     f.latency.push_back({"tracker", ms_between(t1, t2)});
     for (const StageLatency& s : obs.stages) f.latency.push_back({"perception/" + s.name, s.ms});
     f.truth = std::move(sf.truth);
+    f.K = image.K;
     r.frames.push_back(std::move(f));
     ++r.frames_processed;
     bar.update(source->progress(), r.frames_processed);

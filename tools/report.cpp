@@ -37,6 +37,8 @@ void print_score(std::ostream& out, const Score& s) {
   out << fmt("Camera pose error, mean abs over %d valid of %d frames: pitch %s deg, roll %s deg, height %s cm\n",
              s.pose_frames_valid, s.frames_scored, num(s.pitch_error_deg.mean_abs).c_str(),
              num(s.roll_error_deg.mean_abs).c_str(), num(s.height_error_cm.mean_abs).c_str());
+  out << fmt("  height where the surface beneath is in view: %s cm over %d frames\n",
+             num(s.height_error_beneath_visible_cm.mean_abs).c_str(), s.height_error_beneath_visible_cm.n);
 }
 
 void print_model(std::ostream& out, const StairModel& m) {

@@ -78,6 +78,8 @@ json score_to_json(const Score& s) {
       {"pitch_error_deg", or_null(s.pitch_error_deg.mean_abs)},
       {"roll_error_deg", or_null(s.roll_error_deg.mean_abs)},
       {"height_error_cm", or_null(s.height_error_cm.mean_abs)},
+      {"height_error_beneath_visible_cm", or_null(s.height_error_beneath_visible_cm.mean_abs)},
+      {"height_frames_beneath_visible", s.height_error_beneath_visible_cm.n},
       {"latency_ms", latency}};
 }
 

@@ -113,6 +113,26 @@ Eigen::Vector3d true_nosing_in_gravity_frame(const Step& real, const GroundTruth
   return p0 + t * dir;
 }
 
+bool beneath_in_view(const GroundTruthFrame& frame, const std::vector<Step>& real, const Intrinsics& K) {
+  const Eigen::Vector3d& p = frame.position_m;
+  const double forward_x = gravity_frame_in_stair(frame).linear()(0, 0);  // +1 walking up the x axis
+  // The level beneath: the highest step whose nosing is behind the camera.
+  int level = -1;  // -1 = the floor before the first step
+  for (size_t k = 0; k < real.size(); ++k)
+    if (real[k].nosing_m.x() <= p.x()) level = static_cast<int>(k);
+  const double surface_z = level < 0 ? 0.0 : real[static_cast<size_t>(level)].nosing_m.z();
+  // Where that level ends ahead of the camera (none: it runs on).
+  std::optional<double> end_x;
+  if (forward_x > 0 && level + 1 < static_cast<int>(real.size())) end_x = real[static_cast<size_t>(level + 1)].nosing_m.x();
+  if (forward_x < 0 && level >= 0) end_x = real[static_cast<size_t>(level)].nosing_m.x();
+  const double below_deg = -frame.pitch_deg + std::atan((K.height - 1 - K.cy) / K.fy) * 180.0 / M_PI;
+  if (below_deg >= 90.0) return true;  // the point straight beneath is in view
+  if (below_deg <= 0.0) return false;
+  const double nearest_m = (p.z() - surface_z) / std::tan(below_deg * M_PI / 180.0);
+  constexpr double kMargin_m = 0.05;
+  return !end_x || nearest_m + kMargin_m < std::abs(*end_x - p.x()) * std::abs(forward_x);
+}
+
 std::vector<StepMatch> match_frame_steps(const std::vector<Step>& detected, const std::vector<Step>& real,
                                          const GroundTruthFrame& frame) {
   std::vector<Candidate> candidates;
@@ -193,7 +213,7 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
                 const GroundTruth& truth) {
   Score s;
   const std::vector<Step> real = real_steps(truth);
-  Accumulator pitch, roll, height;
+  Accumulator pitch, roll, height, height_visible;
   for (const FrameResult& f : frames) {
     if (!f.truth) continue;
     const GroundTruthFrame& gt = *f.truth;
@@ -211,13 +231,17 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
       ++s.pose_frames_valid;
       pitch.add(f.camera.pitch_deg - gt.pitch_deg);
       roll.add(f.camera.roll_deg - gt.roll_deg);
-      if (f.camera.height_m) height.add(100.0 * (*f.camera.height_m - gt.height_m));
+      if (f.camera.height_m) {
+        height.add(100.0 * (*f.camera.height_m - gt.height_m));
+        if (f.K && beneath_in_view(gt, real, *f.K)) height_visible.add(100.0 * (*f.camera.height_m - gt.height_m));
+      }
     }
   }
   if (s.visible_steps > 0) s.frame_step_detection = double(s.frame_steps_matched) / s.visible_steps;
   s.pitch_error_deg = pitch.stats();
   s.roll_error_deg = roll.stats();
   s.height_error_cm = height.stats();
+  s.height_error_beneath_visible_cm = height_visible.stats();
 
   if (model) {
     s.model_scored = true;

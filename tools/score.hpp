@@ -20,6 +20,7 @@ struct FrameResult {
   // "perception", "tracker" and perception's own stages as "perception/<name>".
   std::vector<StageLatency> latency;
   std::optional<GroundTruthFrame> truth;
+  std::optional<Intrinsics> K;  // of the processed frame: what the camera could see
 };
 
 struct ErrorStats {
@@ -55,6 +56,9 @@ struct Score {
   ErrorStats pitch_error_deg;
   ErrorStats roll_error_deg;
   ErrorStats height_error_cm;  // only where both heights are known
+  // The same over the frames where the surface beneath the camera shows in the
+  // image (beneath_in_view): elsewhere no single frame can tell its height.
+  ErrorStats height_error_beneath_visible_cm;
   std::map<std::string, LatencyStats> latency_ms;
 };
 
@@ -76,6 +80,13 @@ Eigen::Isometry3d gravity_frame_in_stair(const GroundTruthFrame& frame);
 // line runs within 30 deg of the optical axis, at its point nearest the camera.
 Eigen::Vector3d true_nosing_in_gravity_frame(const Step& real, const GroundTruthFrame& frame,
                                              double left_m = 0.0);
+
+// True when part of the level the camera stands over (floor, tread or
+// landing, from the real steps) lies in the image: the lowest image row, seen
+// at the true pitch (roll ignored), meets that level before it ends ahead
+// (at the next riser going up, at its own nosing going down) by at least
+// 5 cm. Needs the frame's intrinsics.
+bool beneath_in_view(const GroundTruthFrame& frame, const std::vector<Step>& real, const Intrinsics& K);
 
 // One frame: detected nosings matched to real ones (|dx| <= tread/2 and
 // |dz| <= riser/2 of the real step), nearest pair first, each side at most once.

@@ -90,7 +90,7 @@ TEST(EvalResultJson, ModelAndScoreKeys) {
   const json& s = j["score"];
   expect_keys(s, {"frame_step_detection", "model_steps_detected", "model_steps_real", "riser_error_cm",
                   "tread_error_cm", "false_steps", "pitch_error_deg", "roll_error_deg", "height_error_cm",
-                  "latency_ms"},
+                  "height_error_beneath_visible_cm", "height_frames_beneath_visible", "latency_ms"},
               "score");
   EXPECT_EQ(s["model_steps_detected"], kSteps);
   EXPECT_EQ(s["model_steps_real"], kSteps);

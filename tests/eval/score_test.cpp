@@ -161,6 +161,35 @@ TEST(EvalScore, PoseErrorsOverValidFramesOnly) {
   EXPECT_NEAR(*s.height_error_cm.mean_abs, 3.0, 1e-9);
 }
 
+TEST(EvalScore, BeneathInViewFromTheTrueGeometry) {
+  // Kinect v1: the bottom row is 24.57 deg below the optical axis; at pitch
+  // -35 deg it meets a surface 1 m below at 0.587 m (visible with 5 cm more).
+  const Intrinsics K{640, 480, 525.0, 525.0, 319.5, 239.5};
+  const std::vector<Step> real = real_steps(straight_stair());
+  EXPECT_TRUE(beneath_in_view(camera_frame(-2.0, 0.0, 1.0, -35.0), real, K));
+  EXPECT_TRUE(beneath_in_view(camera_frame(-0.7, 0.0, 1.0, -35.0), real, K));
+  EXPECT_FALSE(beneath_in_view(camera_frame(-0.5, 0.0, 1.0, -35.0), real, K));  // floor ends at the riser
+  EXPECT_FALSE(beneath_in_view(camera_frame(0.1, 0.0, 1.18, -35.0), real, K));  // on the first tread
+  // Going down from the top landing (nosing at x = 1.12, z = 0.9).
+  EXPECT_TRUE(beneath_in_view(camera_frame(1.92, 0.0, 1.9, -35.0, 180.0), real, K));
+  EXPECT_FALSE(beneath_in_view(camera_frame(1.5, 0.0, 1.9, -35.0, 180.0), real, K));
+  // Looking straight down the point beneath is always in view.
+  EXPECT_TRUE(beneath_in_view(camera_frame(0.1, 0.0, 1.18, -89.0), real, K));
+}
+
+TEST(EvalScore, HeightErrorWhereTheSurfaceBeneathIsInView) {
+  FabricatedRun run;
+  for (FrameResult& f : run.frames) f.K = Intrinsics{640, 480, 525.0, 525.0, 319.5, 239.5};
+  run.frames[2].truth = camera_frame(-0.5, 0.1, 1.0, -35.0);  // floor beneath out of view
+  run.frames[2].camera.height_m = 1.18;
+  run.frames[0].camera.height_m = 1.02;
+  const Score s = run.score();
+  EXPECT_EQ(s.height_error_cm.n, 3);
+  EXPECT_NEAR(*s.height_error_cm.mean_abs, 20.0 / 3, 1e-9);
+  EXPECT_EQ(s.height_error_beneath_visible_cm.n, 2);
+  EXPECT_NEAR(*s.height_error_beneath_visible_cm.mean_abs, 1.0, 1e-9);
+}
+
 TEST(EvalScore, NoModelLeavesModelScoresUnset) {
   FabricatedRun run;
   const Score s = score_run(run.frames, nullptr, run.truth);
