@@ -26,6 +26,7 @@ void validate(const TrackerConfig& c) {
   require(c.min_seed_steps >= 1, "min_seed_steps");
   require(c.icp_max_distance_m >= c.icp_min_distance_m && c.icp_min_distance_m > 0, "icp_min/max_distance_m");
   require(c.icp_distance_factor > 0 && c.icp_distance_factor < 1, "icp_distance_factor");
+  require(c.icp_max_tread_fraction > 0, "icp_max_tread_fraction");
   require(c.icp_iterations_per_stage >= 1, "icp_iterations_per_stage");
   require(c.registration_points_per_plane >= 1 && c.registration_points_per_plane <= 1024,
           "registration_points_per_plane");
@@ -55,7 +56,7 @@ TrackerConfig load_tracker_config(const std::string& json_path) {
   if (!j.is_object()) throw std::runtime_error(json_path + ": tracker config must be a JSON object");
   TrackerConfig c;
 #define STAIRS_TRACKER_FIELDS(X)                                                                          \
-  X(min_seed_steps) X(icp_max_distance_m) X(icp_min_distance_m) X(icp_distance_factor)                    \
+  X(min_seed_steps) X(icp_max_distance_m) X(icp_max_tread_fraction) X(icp_min_distance_m) X(icp_distance_factor)                    \
   X(icp_iterations_per_stage) X(registration_points_per_plane) X(nosing_weight_points) X(accept_distance_m) \
   X(min_inlier_ratio) X(max_yaw_jump_deg) X(max_translation_jump_m) X(velocity_window_s)                 \
   X(max_prediction_s) X(relocalise_after_s) X(relocalise_step_range) X(match_riser_fraction)              \

@@ -11,7 +11,8 @@ struct TrackerConfig {
   int min_seed_steps = 2;  // steps an observation needs to start a model
 
   // --- registration (4-DoF ICP in the gravity-aligned frame: x, y, z, yaw)
-  double icp_max_distance_m = 1.0;   // m; first (coarsest) correspondence threshold
+  double icp_max_distance_m = 1.0;   // m; first (coarsest) correspondence threshold, at most
+  double icp_max_tread_fraction = 0.4;  // of the typical tread: the first threshold's cap (aliasing)
   double icp_min_distance_m = 0.01;  // m; last (finest) threshold
   double icp_distance_factor = 0.5;  // threshold shrink per stage
   int icp_iterations_per_stage = 2;  // closed-form updates per threshold

@@ -2,6 +2,7 @@
 
 #include "tracker/config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -133,7 +134,12 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
   for (const auto& p : in.nosings) nosings.push_back(R * p);
   const double wn = c.nosing_weight_points;
 
-  for (double thr = c.icp_max_distance_m;; thr = std::max(thr * c.icp_distance_factor, c.icp_min_distance_m)) {
+  // The stair repeats itself every step: correspondences wider than a fraction
+  // of a tread let the observation slide onto the next step (whole-step shifts
+  // are relocalisation's search).
+  const double first_thr =
+      std::max(c.icp_min_distance_m, std::min(c.icp_max_distance_m, c.icp_max_tread_fraction * typical_tread_m(map, c)));
+  for (double thr = first_thr;; thr = std::max(thr * c.icp_distance_factor, c.icp_min_distance_m)) {
     for (int it = 0; it < c.icp_iterations_per_stage; ++it) {
       const Eigen::Vector3d& t = reg.pose.t_m;
       double sx = 0, wx = 0, sz = 0, wz = 0;
@@ -159,17 +165,25 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
   // Quality: agreement of every plane point with the model at the final pose,
   // risers and treads each on their own: a slip that fits the treads but puts
   // the risers beside the model's must not pass on the treads' majority.
+  // Steps beyond the model's ends are new, not disagreeing: the ratios are
+  // over the points within the model's extent (at least a quarter of all).
   const Eigen::Vector3d& t = reg.pose.t_m;
+  const double x_lo = prof.riser_x.front() - c.accept_distance_m, x_hi = prof.tread_x_hi.back() + c.accept_distance_m;
+  const double z_hi = prof.tread_z.back() + c.accept_distance_m;
   double sq = 0;
-  int riser_in = 0, tread_in = 0;
-  auto count = [&](double d, int& in) {
+  int riser_in = 0, tread_in = 0, riser_within = 0, tread_within = 0;
+  auto count = [&](const Eigen::Vector3d& q, double d, int& in, int& within) {
     if (d < c.accept_distance_m) ++in, sq += d * d;
+    if (q.x() >= x_lo && q.x() <= x_hi && q.z() <= z_hi) ++within;
   };
-  for (const auto& p : risers) count(nearest_riser(prof, p + t).distance, riser_in);
-  for (const auto& p : treads) count(nearest_tread(prof, p + t).distance, tread_in);
+  for (const auto& p : risers) count(p + t, nearest_riser(prof, p + t).distance, riser_in, riser_within);
+  for (const auto& p : treads) count(p + t, nearest_tread(prof, p + t).distance, tread_in, tread_within);
   reg.inliers = riser_in + tread_in;
-  const double riser_ratio = risers.empty() ? 1.0 : static_cast<double>(riser_in) / risers.size();
-  const double tread_ratio = treads.empty() ? 1.0 : static_cast<double>(tread_in) / treads.size();
+  auto ratio = [](int in, int within, size_t all) {
+    return all == 0 ? 1.0 : in / std::max({static_cast<double>(within), 0.25 * all, 1.0});
+  };
+  const double riser_ratio = ratio(riser_in, riser_within, risers.size());
+  const double tread_ratio = ratio(tread_in, tread_within, treads.size());
   reg.inlier_ratio = risers.empty() && treads.empty() ? 0.0 : std::min(riser_ratio, tread_ratio);
   reg.rmse_m = reg.inliers > 0 ? std::sqrt(sq / reg.inliers) : -1.0;
   return reg;

@@ -33,7 +33,8 @@ double yaw_from_axis(double axis_angle_rad, double prior_yaw_rad);
 struct Registration {
   Pose4 pose;
   double rmse_m = -1.0;       // over points within accept_distance_m
-  double inlier_ratio = 0.0;  // share of points within accept_distance_m, the lower of risers' and treads'
+  double inlier_ratio = 0.0;  // share of the points within the model's extent that lie within
+                              // accept_distance_m of it, the lower of risers' and treads'
   int inliers = 0;
   bool x_observed = false;    // risers or nosings constrained x
 };
