@@ -67,6 +67,7 @@ StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction 
   chain.levels.push_back(levels[start]);
   std::vector<uint8_t> used(levels.size(), 0);
   used[start] = 1;
+  bool last_landing = false;
   for (;;) {
     const Level& a = chain.levels.back();
     std::optional<float> a_nosing;
@@ -86,7 +87,10 @@ StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction 
       }
     }
     if (best < 0) break;
-    if (is_landing(a, levels[best], dir, a_nosing, c)) ++chain.landings;
+    // A landing counts once the chain goes on beyond it (the floor a flight
+    // ends on is no landing).
+    if (last_landing) ++chain.landings;
+    last_landing = is_landing(a, levels[best], dir, a_nosing, c);
     used[best] = 1;
     chain.levels.push_back(levels[best]);
     chain.deviation += best_dev;
@@ -101,8 +105,8 @@ StairChain best_chain(const std::vector<Level>& levels, const PerceptionConfig& 
   for (Direction dir : {Direction::Up, Direction::Down})
     for (size_t i = 0; i < levels.size(); ++i) {
       StairChain ch = grow_chain(levels, i, dir, c);
-      // Landings need regular steps around them: a single step and a deep
-      // "tread" is a table or a shelf, not a staircase.
+      // Landings need regular steps around them: a step, a deep "tread" and
+      // another step are furniture, not a staircase.
       if (ch.landings > 0 && ch.steps() - ch.landings < c.min_steps) continue;
       if (ch.steps() > best.steps() || (ch.steps() == best.steps() && ch.deviation < best.deviation))
         best = std::move(ch);

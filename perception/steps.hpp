@@ -26,7 +26,7 @@ struct StairChain {
   Direction direction = Direction::None;
   std::vector<Level> levels;
   double deviation = 0;  // summed relative DIN deviation, lower is better
-  int landings = 0;      // treads deeper than landing_min_depth_m
+  int landings = 0;      // treads deeper than landing_min_depth_m with levels beyond them
   int steps() const { return levels.empty() ? 0 : static_cast<int>(levels.size()) - 1; }
 };
 

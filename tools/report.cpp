@@ -23,6 +23,10 @@ void print_score(std::ostream& out, const Score& s) {
   out << "Table 6.1  per-frame step detection: "
       << (s.frame_step_detection ? fmt("%.1f %%", 100.0 * *s.frame_step_detection) : std::string("n/a"))
       << fmt("  (%d of %d visible steps, %d frames)\n", s.frame_steps_matched, s.visible_steps, s.frames_scored);
+  if (s.frame_step_detection_nosing_in_view)
+    out << fmt("  of the visible steps whose nosing is in the image: %.1f %%  (%d of %d)\n",
+               100.0 * *s.frame_step_detection_nosing_in_view, s.frame_steps_matched_nosing_in_view,
+               s.visible_steps_nosing_in_view);
   if (s.model_scored) {
     out << "Tables 6.2/6.3  final model error (cm)  mean signed  mean abs     n\n";
     print_error_row(out, "riser", s.riser_error_cm);

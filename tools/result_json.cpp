@@ -64,6 +64,8 @@ json score_to_json(const Score& s) {
       {"frame_step_detection", or_null(s.frame_step_detection)},
       {"frame_steps_matched", s.frame_steps_matched},
       {"visible_steps", s.visible_steps},
+      {"frame_step_detection_nosing_in_view", or_null(s.frame_step_detection_nosing_in_view)},
+      {"visible_steps_nosing_in_view", s.visible_steps_nosing_in_view},
       {"model_steps_detected", model_int(s.model_steps_detected)},
       {"model_steps_real", model_int(s.model_steps_real)},
       {"model_step_offset", model_int(s.model_step_offset)},

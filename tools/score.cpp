@@ -133,6 +133,14 @@ bool beneath_in_view(const GroundTruthFrame& frame, const std::vector<Step>& rea
   return !end_x || nearest_m + kMargin_m < std::abs(*end_x - p.x()) * std::abs(forward_x);
 }
 
+bool nosing_in_view(const GroundTruthFrame& frame, const Step& real, const Intrinsics& K) {
+  const Eigen::Vector3d p = frame.orientation.normalized().conjugate() *
+                            (Eigen::Vector3d(real.nosing_m.x(), 0.0, real.nosing_m.z()) - frame.position_m);
+  if (p.z() <= 0.0) return false;
+  const double u = K.fx * p.x() / p.z() + K.cx, v = K.fy * p.y() / p.z() + K.cy;
+  return u >= 0 && u <= K.width - 1 && v >= 0 && v <= K.height - 1;
+}
+
 std::vector<StepMatch> match_frame_steps(const std::vector<Step>& detected, const std::vector<Step>& real,
                                          const GroundTruthFrame& frame) {
   std::vector<Candidate> candidates;
@@ -224,6 +232,13 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
     s.visible_steps += static_cast<int>(visible.size());
     const auto matches = match_frame_steps(f.steps, real, gt);
     for (const StepMatch& m : matches) s.frame_steps_matched += visible.count(m.real) ? 1 : 0;
+    if (f.K) {
+      std::set<int> with_nosing;
+      for (int v : visible)
+        if (nosing_in_view(gt, real[static_cast<size_t>(v)], *f.K)) with_nosing.insert(v);
+      s.visible_steps_nosing_in_view += static_cast<int>(with_nosing.size());
+      for (const StepMatch& m : matches) s.frame_steps_matched_nosing_in_view += with_nosing.count(m.real) ? 1 : 0;
+    }
     const int false_steps = static_cast<int>(f.steps.size() - matches.size());
     s.frame_false_steps += false_steps;
     s.frames_with_false_steps += false_steps > 0 ? 1 : 0;
@@ -238,6 +253,9 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
     }
   }
   if (s.visible_steps > 0) s.frame_step_detection = double(s.frame_steps_matched) / s.visible_steps;
+  if (s.visible_steps_nosing_in_view > 0)
+    s.frame_step_detection_nosing_in_view =
+        double(s.frame_steps_matched_nosing_in_view) / s.visible_steps_nosing_in_view;
   s.pitch_error_deg = pitch.stats();
   s.roll_error_deg = roll.stats();
   s.height_error_cm = height.stats();

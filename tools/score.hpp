@@ -41,6 +41,13 @@ struct Score {
   int visible_steps = 0;
   int frame_steps_matched = 0;  // matches to visible real steps
   std::optional<double> frame_step_detection;  // matched / visible, 0..1
+  // The same over the visible steps whose nosing's centre projects into the
+  // image (nosing_in_view): a landing seen after its edge has passed beneath
+  // the camera, or a tread whose front edge is below the view, is visible by
+  // DESIGN.md's pixel count but offers no edge to detect.
+  int visible_steps_nosing_in_view = 0;
+  int frame_steps_matched_nosing_in_view = 0;
+  std::optional<double> frame_step_detection_nosing_in_view;
   int frame_false_steps = 0;  // detections matched to no real step, all frames
   int frames_with_false_steps = 0;
   // Tables 6.2-6.4: the final model (absent when no tracker ran).
@@ -87,6 +94,10 @@ Eigen::Vector3d true_nosing_in_gravity_frame(const Step& real, const GroundTruth
 // (at the next riser going up, at its own nosing going down) by at least
 // 5 cm. Needs the frame's intrinsics.
 bool beneath_in_view(const GroundTruthFrame& frame, const std::vector<Step>& real, const Intrinsics& K);
+
+// True when the centre of the real step's nosing (stair frame (x, 0, z))
+// projects into the image of the true camera (occlusion not considered).
+bool nosing_in_view(const GroundTruthFrame& frame, const Step& real, const Intrinsics& K);
 
 // One frame: detected nosings matched to real ones (|dx| <= tread/2 and
 // |dz| <= riser/2 of the real step), nearest pair first, each side at most once.
