@@ -190,6 +190,19 @@ TEST(EvalScore, HeightErrorWhereTheSurfaceBeneathIsInView) {
   EXPECT_NEAR(*s.height_error_beneath_visible_cm.mean_abs, 1.0, 1e-9);
 }
 
+TEST(EvalScore, NosingInViewByProjection) {
+  const Intrinsics K{640, 480, 525.0, 525.0, 319.5, 239.5};
+  const std::vector<Step> real = real_steps(straight_stair());
+  const GroundTruthFrame approach = camera_frame(-2.0, 0.0, 1.0, -35.0);
+  EXPECT_TRUE(nosing_in_view(approach, real[0], K));    // 12.7 deg above the optical axis
+  EXPECT_FALSE(nosing_in_view(approach, real[4], K));   // 33.2 deg above it: beyond the top row
+  // At the top going down, the landing's own edge is 34 deg below the axis.
+  EXPECT_FALSE(nosing_in_view(camera_frame(1.5, 0.0, 1.9, -35.0, 180.0), real[4], K));
+  EXPECT_TRUE(nosing_in_view(camera_frame(1.5, 0.0, 1.9, -35.0, 180.0), real[2], K));
+  // Behind the camera.
+  EXPECT_FALSE(nosing_in_view(camera_frame(0.5, 0.0, 1.2, -35.0), real[0], K));
+}
+
 TEST(EvalScore, NoModelLeavesModelScoresUnset) {
   FabricatedRun run;
   const Score s = score_run(run.frames, nullptr, run.truth);
