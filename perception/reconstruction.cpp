@@ -29,6 +29,13 @@ int riser_at(const PlaneSet& ps, float s, float z, bool above) {
   return -1;
 }
 
+double median_rise(const std::vector<Step>& steps) {
+  std::vector<double> rises;
+  for (const Step& s : steps) rises.push_back(*s.riser_height_m);
+  std::nth_element(rises.begin(), rises.begin() + rises.size() / 2, rises.end());
+  return rises[rises.size() / 2];
+}
+
 // Going up, the chain's first level is a step too when a riser rises to its
 // front edge (its bottom is usually out of view: the rise is the chain's
 // median), and a riser standing on the last level is the next step, its tread
@@ -36,10 +43,7 @@ int riser_at(const PlaneSet& ps, float s, float z, bool above) {
 void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps,
                         const PerceptionConfig& cfg) {
   if (steps.empty()) return;
-  std::vector<double> rises;
-  for (const Step& s : steps) rises.push_back(*s.riser_height_m);
-  std::nth_element(rises.begin(), rises.begin() + rises.size() / 2, rises.end());
-  const double median = rises[rises.size() / 2];
+  const double median = median_rise(steps);
   const Level& base = chain.levels.front();
   if (const int r = riser_at(ps, base.s_min, base.z, false); r >= 0) {
     Step s;
@@ -66,11 +70,29 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
   }
 }
 
+// Going down, the last level of a staircase (min_steps already) is a step too
+// when a depth jump shows its nosing and it is no floor (deeper than a
+// landing); the riser below it is out of view (the rise is the chain's median).
+void complete_descending(const PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps,
+                         const PerceptionConfig& cfg) {
+  const Level& last = chain.levels.back();
+  if (static_cast<int>(steps.size()) < cfg.min_steps || !last.far_edge ||
+      last.s_max - last.s_min >= cfg.landing_min_depth_m)
+    return;
+  Step s;
+  s.tread_plane = last.plane;
+  s.riser_height_m = median_rise(steps);
+  s.nosing_m = ps.to_camera(last.s_max, 0.5f * (last.t_min + last.t_max), last.z).cast<double>();
+  s.width_m = last.t_max - last.t_min;
+  steps.push_back(s);
+}
+
 }  // namespace
 
 void reconstruct(PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps, const PerceptionConfig& cfg) {
   const bool up = chain.direction == Direction::Up;
   if (up) complete_ascending(ps, chain, steps, cfg);
+  else complete_descending(ps, chain, steps, cfg);
   // Steps are nearest first: going up the next step is farther and higher,
   // going down the next step is farther and lower; either way a tread reaches
   // from its nosing to the next nosing.

@@ -30,10 +30,12 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   // their nosings show as depth jumps: the tread ends there.
   for (const JumpEdge& j : edges) {
     bool seen = false;
-    for (size_t k = 0; k < n_treads && !seen; ++k)
+    for (size_t k = 0; k < n_treads && !seen; ++k) {
       seen = std::abs(levels[k].z - j.z) < kSameLevel_m && levels[k].s_max > j.s - kAhead_m &&
              levels[k].s_min < j.s + kBehind_m;
-    if (!seen) levels.push_back({-1, j.z, j.s, j.s, j.t_min, j.t_max});
+      levels[k].far_edge = levels[k].far_edge || seen;
+    }
+    if (!seen) levels.push_back({-1, j.z, j.s, j.s, j.t_min, j.t_max, true});
   }
   std::sort(levels.begin(), levels.end(), [](const Level& a, const Level& b) { return a.z < b.z; });
   return levels;

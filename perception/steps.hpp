@@ -12,6 +12,7 @@ namespace stairs {
 struct Level {
   int plane = -1;
   float z = 0, s_min = 0, s_max = 0, t_min = 0, t_max = 0;
+  bool far_edge = false;  // a depth-jump edge ends it (its nosing, seen from above)
 };
 
 // Levels of the tread planes, of the tops of risers and of the depth-jump
