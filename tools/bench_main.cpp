@@ -30,9 +30,9 @@ std::string opt(const std::optional<double>& v, const char* f) {
 
 const char* kHeader =
     "| sequence | resolution | frames | perception ms (median / p95) | tracker ms (median / p95) "
-    "| PCL planes ms (median / p95) | ours / PCL (median) | step detection | model steps (detected/real) "
-    "| riser err cm (signed / abs) | tread err cm (signed / abs) | false steps (frames / model) "
-    "| pitch / roll err deg | height err cm |\n"
+    "| PCL planes ms (median / p95) | ours / PCL (median) | step detection (all visible / nosing in view) "
+    "| model steps (detected/real) | riser err cm (signed / abs) | tread err cm (signed / abs) "
+    "| false steps (frames / model) | pitch / roll err deg | height err cm (surface beneath in view) |\n"
     "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
 }  // namespace
@@ -92,15 +92,16 @@ int main(int argc, char** argv) {
                      "%.2f")
               << " | ";
     if (s) {
-      std::cout << opt(s->frame_step_detection ? std::optional<double>(100 * *s->frame_step_detection)
-                                               : std::nullopt,
-                       "%.1f %%")
+      auto percent = [](const std::optional<double>& v) {
+        return opt(v ? std::optional<double>(100 * *v) : std::nullopt, "%.1f %%");
+      };
+      std::cout << percent(s->frame_step_detection) << " / " << percent(s->frame_step_detection_nosing_in_view)
                 << " | " << s->model_steps_detected << "/" << s->model_steps_real << " | "
                 << opt(s->riser_error_cm.mean_signed, "%+.2f") << " / " << opt(s->riser_error_cm.mean_abs, "%.2f")
                 << " | " << opt(s->tread_error_cm.mean_signed, "%+.2f") << " / "
                 << opt(s->tread_error_cm.mean_abs, "%.2f") << " | " << s->frame_false_steps << " / "
                 << s->model_false_steps << " | " << opt(s->pitch_error_deg.mean_abs, "%.2f") << " / "
-                << opt(s->roll_error_deg.mean_abs, "%.2f") << " | " << opt(s->height_error_cm.mean_abs, "%.2f")
+                << opt(s->roll_error_deg.mean_abs, "%.2f") << " | " << opt(s->height_error_beneath_visible_cm.mean_abs, "%.2f")
                 << " |\n";
     } else {
       std::cout << "n/a | n/a | n/a | n/a | n/a | n/a | n/a |\n";

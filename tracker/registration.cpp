@@ -179,6 +179,7 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
   for (const auto& p : risers) count(p + t, nearest_riser(prof, p + t).distance, riser_in, riser_within);
   for (const auto& p : treads) count(p + t, nearest_tread(prof, p + t).distance, tread_in, tread_within);
   reg.inliers = riser_in + tread_in;
+  reg.within = riser_within + tread_within;
   auto ratio = [](int in, int within, size_t all) {
     return all == 0 ? 1.0 : in / std::max({static_cast<double>(within), 0.25 * all, 1.0});
   };

@@ -36,6 +36,7 @@ struct Registration {
   double inlier_ratio = 0.0;  // share of the points within the model's extent that lie within
                               // accept_distance_m of it, the lower of risers' and treads'
   int inliers = 0;
+  int within = 0;             // points within the model's extent (none: nothing to register against)
   bool x_observed = false;    // risers or nosings constrained x
 };
 

@@ -43,4 +43,11 @@ double floor_z_m(const StairMap& map, const TrackerConfig& c) {
   return first.z() - riser;
 }
 
+double surface_z_m(const StairMap& map, double x_m, const TrackerConfig& c) {
+  double z = floor_z_m(map, c);
+  for (const MapStep& s : map.steps)
+    if (s.x() <= x_m) z = s.z();
+  return z;
+}
+
 }  // namespace stairs

@@ -48,6 +48,9 @@ struct StairMap {
 // steps), or the configured defaults while the model is too small.
 double typical_riser_m(const StairMap& map, const TrackerConfig& c);
 double typical_tread_m(const StairMap& map, const TrackerConfig& c);
+// Height of the level at x (W): the tread of the last step whose edge is at or
+// behind x, the floor before the first.
+double surface_z_m(const StairMap& map, double x_m, const TrackerConfig& c);
 
 // Height of the floor below the first step.
 double floor_z_m(const StairMap& map, const TrackerConfig& c);

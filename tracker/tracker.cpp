@@ -125,8 +125,18 @@ const StairModel& Tracker::update(const Observation& obs) {
   }
   const RegistrationInput input = registration_input(obs, config_.registration_points_per_plane);
   const bool relocalising = since_accept_s > config_.relocalise_after_s || model_.state == TrackingState::Lost;
-  const Registration reg = relocalising ? relocalise(input, map_, start_pose, config_)
-                                        : register_to_map(input, map_, start_pose, config_);
+  Registration reg = relocalising ? relocalise(input, map_, start_pose, config_)
+                                  : register_to_map(input, map_, start_pose, config_);
+  // Entirely beyond the model (the next flight seen from a landing): nothing
+  // to register against, so the motion prior places it while it is fresh.
+  const bool dead_reckoned = reg.within == 0 && since_accept_s <= config_.max_prediction_s;
+  if (dead_reckoned) {
+    reg.pose = start_pose;
+    reg.inlier_ratio = 1.0;
+    // Constant velocity carries a flight's slope across the landing; the height
+    // over the surface beneath, where perception sees it, does not.
+    if (obs.camera.height_m) reg.pose.t_m.z() = surface_z_m(map_, reg.pose.t_m.x(), config_) + *obs.camera.height_m;
+  }
   model_.registration_rmse_m = reg.rmse_m;
   model_.registration_inlier_ratio = reg.inlier_ratio;
   // Structure check: the correction must stay within the motion prior's reach
@@ -146,7 +156,7 @@ const StairModel& Tracker::update(const Observation& obs) {
     accepted_.pop_front();
   ++model_.observations_fused;
   model_.state = relocalising ? TrackingState::Relocalised : TrackingState::Ok;
-  model_.status = relocalising ? "relocalised" : "ok";
+  model_.status = dead_reckoned ? "beyond the model: placed by the motion prior" : relocalising ? "relocalised" : "ok";
   publish(obs, reg.pose, true);
   return finish();
 }
