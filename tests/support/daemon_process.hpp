@@ -1,0 +1,96 @@
+// A daemon as a real subprocess for the integration tests (start, crash it,
+// stop it cleanly), LCM pumping with a deadline, and the latest daemon_status_t
+// of one daemon.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+#include <stairs/daemon_status_t.hpp>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace stairs::test {
+
+class DaemonProcess {
+ public:
+  // Runs STAIRS_BINARY_DIR/bin/<program> with `args`.
+  DaemonProcess(const std::string& program, const std::vector<std::string>& args) {
+    const std::string exe = std::string(STAIRS_BINARY_DIR) + "/bin/" + program;
+    pid_ = fork();
+    if (pid_ == 0) {
+      std::vector<char*> argv{const_cast<char*>(exe.c_str())};
+      for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+      argv.push_back(nullptr);
+      execv(exe.c_str(), argv.data());
+      _exit(127);
+    }
+  }
+  DaemonProcess(const DaemonProcess&) = delete;
+  DaemonProcess& operator=(const DaemonProcess&) = delete;
+  ~DaemonProcess() {
+    if (running()) kill_hard();
+  }
+
+  pid_t pid() const { return pid_; }
+  bool running() {
+    if (pid_ <= 0 || exited_) return false;
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) != pid_) return true;
+    exited_ = true;
+    status_ = status;
+    return false;
+  }
+  // A crash: SIGKILL, no chance to clean up.
+  void kill_hard() { signal_and_wait(SIGKILL); }
+  // SIGTERM and wait; true when the daemon exited normally with status 0.
+  bool stop_cleanly() {
+    signal_and_wait(SIGTERM);
+    return WIFEXITED(status_) && WEXITSTATUS(status_) == 0;
+  }
+
+ private:
+  void signal_and_wait(int sig) {
+    if (!running()) return;
+    kill(pid_, sig);
+    waitpid(pid_, &status_, 0);
+    exited_ = true;
+  }
+  pid_t pid_ = -1;
+  bool exited_ = false;
+  int status_ = -1;
+};
+
+// Channel names of this test process only: ctest runs the tests of one program
+// as separate processes side by side on the same multicast group.
+inline std::string channel(const std::string& name) { return "T" + std::to_string(getpid()) + "_" + name; }
+
+inline void pump(lcm::LCM& lcm, int ms) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+  while (std::chrono::steady_clock::now() < end) lcm.handleTimeout(20);
+}
+
+// Handles messages until `done` or `timeout_ms` has passed; returns done().
+// The timeout only bounds a failing test: nothing is asserted about speed.
+inline bool pump_until(lcm::LCM& lcm, const std::function<bool()>& done, int timeout_ms = 20000) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  while (!done() && std::chrono::steady_clock::now() < end) lcm.handleTimeout(20);
+  return done();
+}
+
+// The newest daemon_status_t from the daemon called `name`.
+struct StatusWatch {
+  std::string name;
+  std::optional<daemon_status_t> last;
+  void on_status(const lcm::ReceiveBuffer*, const std::string&, const daemon_status_t* s) {
+    if (s->name == name) last = *s;
+  }
+};
+
+}  // namespace stairs::test

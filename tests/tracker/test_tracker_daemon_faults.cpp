@@ -1,0 +1,140 @@
+// Faults around stairs-tracker as a real subprocess over UDP multicast on
+// loopback: killed (SIGKILL) and restarted mid-stream it builds a new model from
+// the next observation; a 1.2 s gap in the observations is re-localised and an
+// out-of-order or repeated utime is dropped and counted, and it keeps publishing.
+#include "tests/support/daemon_process.hpp"
+#include "tests/support/multicast.hpp"
+#include "common/lcm_bridge.hpp"
+#include "synthetic_stair.hpp"
+
+#include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
+
+#include <map>
+#include <memory>
+
+namespace stairs {
+namespace {
+
+const std::string kUrl = "udpm://239.255.76.67:7695?ttl=0&recv_buf_size=4194304";
+
+struct Models {
+  std::map<int32_t, StairModel> by_seq;  // by source_seq
+  std::vector<int32_t> order;            // source_seq in arrival order
+  int bad = 0;
+  void on_model(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    stair_model_t msg;
+    StairModel m;
+    std::string error;
+    if (!decode_message(rbuf->data, rbuf->data_size, msg, error) || !from_lcm(msg, m, error)) {
+      ++bad;
+      return;
+    }
+    by_seq[msg.source_seq] = m;
+    order.push_back(msg.source_seq);
+  }
+};
+
+class TrackerFaults : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!test::ensure_multicast_loopback(kUrl)) GTEST_SKIP() << test::kMulticastSkipReason;
+    ASSERT_TRUE(lcm_.good());
+    lcm_.subscribe(test::channel("MODEL"), &Models::on_model, &models_);
+    lcm_.subscribe(test::channel("STATUS"), &test::StatusWatch::on_status, &status_);
+  }
+
+  // Starts a daemon and waits for its first status message, sent once it has subscribed.
+  void start(std::unique_ptr<test::DaemonProcess>& d) {
+    status_.last.reset();
+    d = std::make_unique<test::DaemonProcess>(
+        "stairs-tracker", std::vector<std::string>{"--lcm-url", kUrl, "--observation-channel", test::channel("OBS"),
+                                                   "--model-channel", test::channel("MODEL"), "--status-channel",
+                                                   test::channel("STATUS")});
+    ASSERT_TRUE(test::pump_until(lcm_, [&] { return status_.last && status_.last->received == 0; }))
+        << "no status from the new daemon";
+  }
+
+  // The observation from walk position `k` at that position's utime, tagged `seq`.
+  void send(size_t k, int32_t seq, int64_t utime) {
+    Observation obs = maker_.make(cams_.at(k), utime);
+    obs.source_seq = seq;
+    const stair_observation_t msg = to_lcm(obs, utime);
+    lcm_.publish(test::channel("OBS"), &msg);
+  }
+  void send(size_t k) { send(k, static_cast<int32_t>(k), static_cast<int64_t>(k) * 33'333); }
+
+  // Walk positions [from, to), one at a time: each model arrives before the next observation goes.
+  void send_and_expect(size_t from, size_t to) {
+    for (size_t k = from; k < to; ++k) {
+      send(k);
+      ASSERT_TRUE(test::pump_until(lcm_, [&] { return models_.by_seq.count(static_cast<int32_t>(k)) > 0; }))
+          << "no model for observation " << k;
+    }
+  }
+
+  const StairModel& model(size_t k) { return models_.by_seq.at(static_cast<int32_t>(k)); }
+
+  lcm::LCM lcm_{kUrl};
+  Models models_;
+  test::StatusWatch status_{"stairs-tracker", {}};
+  const synthetic::StairGeometry stair_ = synthetic::make_stair(9, 0.17, 0.28, 1.5);
+  synthetic::ObservationMaker maker_{stair_, 21, 256};
+  const std::vector<synthetic::CameraState> cams_ = synthetic::walk(stair_, true, 0.6, 30.0);
+};
+
+TEST_F(TrackerFaults, KilledAndRestartedBuildsANewModelFromTheNextObservation) {
+  std::unique_ptr<test::DaemonProcess> first, second;
+  ASSERT_NO_FATAL_FAILURE(start(first));
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(0, 30));
+  EXPECT_GT(model(29).observations_fused, 15);
+  first->kill_hard();
+  for (size_t k = 30; k < 40; ++k) send(k);  // nobody listens: these are gone
+  test::pump(lcm_, 200);
+
+  ASSERT_NO_FATAL_FAILURE(start(second));
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(40, 100));
+  // The first observation after the restart seeds the new model, which then tracks.
+  EXPECT_EQ(model(40).observations_fused, 1);
+  EXPECT_GT(model(99).observations_fused, 30);
+  EXPECT_EQ(model(99).state, TrackingState::Ok);
+  ASSERT_TRUE(test::pump_until(lcm_, [&] { return status_.last->published == 60; }));
+  EXPECT_EQ(status_.last->received, 60);
+  EXPECT_EQ(status_.last->dropped, 0);
+  EXPECT_TRUE(second->stop_cleanly());
+  for (size_t k = 30; k < 40; ++k) EXPECT_EQ(models_.by_seq.count(static_cast<int32_t>(k)), 0u) << k;
+  EXPECT_EQ(models_.bad, 0);
+}
+
+TEST_F(TrackerFaults, GapAndOutOfOrderUtimesAreHandledCountedAndItKeepsPublishing) {
+  std::unique_ptr<test::DaemonProcess> d;
+  ASSERT_NO_FATAL_FAILURE(start(d));
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(0, 30));
+  const int fused_before_gap = model(29).observations_fused;
+  // Walk positions 30..65 are never observed: 1.2 s of utimes missing.
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(66, 90));
+  EXPECT_EQ(model(66).state, TrackingState::Relocalised) << model(66).status;
+  EXPECT_EQ(model(89).state, TrackingState::Ok) << model(89).status;
+  EXPECT_GT(model(89).observations_fused, fused_before_gap + 15);
+
+  // An old utime and a repeated one: dropped without a model, then the next in-order one is fused.
+  send(80, 1001, 80 * 33'333);
+  send(89, 1002, 89 * 33'333);
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(90, 100));
+  EXPECT_EQ(models_.by_seq.count(1001), 0u);
+  EXPECT_EQ(models_.by_seq.count(1002), 0u);
+  EXPECT_EQ(model(99).state, TrackingState::Ok) << model(99).status;
+  EXPECT_GT(model(99).observations_fused, model(89).observations_fused + 5);
+
+  const int64_t sent = 30 + 24 + 2 + 10;
+  ASSERT_TRUE(test::pump_until(lcm_, [&] { return status_.last->received == sent; }));
+  EXPECT_EQ(status_.last->dropped, 2);
+  EXPECT_EQ(status_.last->published, sent - 2);
+  EXPECT_EQ(status_.last->invalid, 0);
+  EXPECT_NE(status_.last->last_error.find("out-of-order"), std::string::npos) << status_.last->last_error;
+  EXPECT_EQ(static_cast<int64_t>(models_.order.size()), sent - 2);
+  EXPECT_TRUE(d->stop_cleanly());
+}
+
+}  // namespace
+}  // namespace stairs
