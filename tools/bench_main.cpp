@@ -30,7 +30,7 @@ std::string opt(const std::optional<double>& v, const char* f) {
 
 const char* kHeader =
     "| sequence | resolution | frames | perception ms (median / p95) | tracker ms (median / p95) "
-    "| PCL planes ms (median / p95) | ours / PCL (median) | step detection (all visible / nosing in view) "
+    "| PCL planes ms (median / p95) | ours / PCL (median) | step detection (all visible / nosing in view / tracked) "
     "| model steps (detected/real) | riser err cm (signed / abs) | tread err cm (signed / abs) "
     "| false steps (frames / model) | pitch / roll err deg | height err cm (surface beneath in view) |\n"
     "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -96,6 +96,7 @@ int main(int argc, char** argv) {
         return opt(v ? std::optional<double>(100 * *v) : std::nullopt, "%.1f %%");
       };
       std::cout << percent(s->frame_step_detection) << " / " << percent(s->frame_step_detection_nosing_in_view)
+                << " / " << percent(s->frame_step_detection_tracked)
                 << " | " << s->model_steps_detected << "/" << s->model_steps_real << " | "
                 << opt(s->riser_error_cm.mean_signed, "%+.2f") << " / " << opt(s->riser_error_cm.mean_abs, "%.2f")
                 << " | " << opt(s->tread_error_cm.mean_signed, "%+.2f") << " / "

@@ -6,6 +6,7 @@
 #include "perception/pipeline.hpp"
 #include "tools/downsample.hpp"
 #include "tracker/config.hpp"
+#include "tracker/model_output.hpp"
 #include "tracker/tracker.hpp"
 
 #include <unistd.h>
@@ -111,6 +112,7 @@ RunResult replay(const std::string& input, const ReplayOptions& options, const F
     f.camera = obs.camera;
     f.direction = obs.direction;
     f.steps = std::move(obs.steps);
+    f.tracked_steps = steps_from_camera(tracker.model());
     f.latency.push_back({"perception", ms_between(t0, t1)});
     f.latency.push_back({"tracker", ms_between(t1, t2)});
     for (const StageLatency& s : obs.stages) f.latency.push_back({"perception/" + s.name, s.ms});

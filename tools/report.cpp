@@ -27,6 +27,10 @@ void print_score(std::ostream& out, const Score& s) {
     out << fmt("  of the visible steps whose nosing is in the image: %.1f %%  (%d of %d)\n",
                100.0 * *s.frame_step_detection_nosing_in_view, s.frame_steps_matched_nosing_in_view,
                s.visible_steps_nosing_in_view);
+  if (s.frame_step_detection_tracked)
+    out << fmt("  tracked (the model's steps from its camera): %.1f %%  (%d of %d), %d false\n",
+               100.0 * *s.frame_step_detection_tracked, s.tracked_steps_matched, s.visible_steps,
+               s.tracked_false_steps);
   if (s.model_scored) {
     out << "Tables 6.2/6.3  final model error (cm)  mean signed  mean abs     n\n";
     print_error_row(out, "riser", s.riser_error_cm);

@@ -45,6 +45,7 @@ json frame_to_json(const FrameResult& f) {
           {"camera", camera},
           {"direction", direction_name(f.direction)},
           {"steps", steps_to_json(f.steps)},
+          {"tracked_steps", f.tracked_steps ? steps_to_json(*f.tracked_steps) : json(nullptr)},
           {"latency_ms", latency}};
 }
 
@@ -66,6 +67,8 @@ json score_to_json(const Score& s) {
       {"visible_steps", s.visible_steps},
       {"frame_step_detection_nosing_in_view", or_null(s.frame_step_detection_nosing_in_view)},
       {"visible_steps_nosing_in_view", s.visible_steps_nosing_in_view},
+      {"frame_step_detection_tracked", or_null(s.frame_step_detection_tracked)},
+      {"frame_steps_matched_tracked", s.tracked_scored ? json(s.tracked_steps_matched) : json(nullptr)},
       {"model_steps_detected", model_int(s.model_steps_detected)},
       {"model_steps_real", model_int(s.model_steps_real)},
       {"model_step_offset", model_int(s.model_step_offset)},
@@ -75,7 +78,8 @@ json score_to_json(const Score& s) {
        {{"frames", s.frame_false_steps},
         {"frames_with_false", s.frames_with_false_steps},
         {"per_frame", s.frames_scored ? json(double(s.frame_false_steps) / s.frames_scored) : json(nullptr)},
-        {"model", model_int(s.model_false_steps)}}},
+        {"model", model_int(s.model_false_steps)},
+        {"frames_tracked", s.tracked_scored ? json(s.tracked_false_steps) : json(nullptr)}}},
       {"pose_frames_valid", s.pose_frames_valid},
       {"pitch_error_deg", or_null(s.pitch_error_deg.mean_abs)},
       {"roll_error_deg", or_null(s.roll_error_deg.mean_abs)},

@@ -1,5 +1,7 @@
 #include "tools/score.hpp"
 
+#include "common/gravity_frame.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -87,21 +89,7 @@ std::vector<Step> real_steps(const GroundTruth& truth) {
 }
 
 Eigen::Isometry3d gravity_frame_in_stair(const GroundTruthFrame& frame) {
-  const Eigen::Matrix3d R = frame.orientation.normalized().toRotationMatrix();
-  Eigen::Vector3d forward = R.col(2);
-  forward.z() = 0.0;
-  if (forward.norm() < 1e-6) {  // looking straight down: image up is forward
-    forward = -R.col(1);
-    forward.z() = 0.0;
-  }
-  forward.normalize();
-  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear().col(0) = forward;
-  T.linear().col(1) = up.cross(forward);
-  T.linear().col(2) = up;
-  T.translation() = frame.position_m;
-  return T;
+  return gravity_frame_pose(frame.position_m, frame.orientation);
 }
 
 Eigen::Vector3d true_nosing_in_gravity_frame(const Step& real, const GroundTruthFrame& frame, double left_m) {
@@ -231,7 +219,16 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
       if (v >= 0 && v < static_cast<int>(real.size())) visible.insert(v);
     s.visible_steps += static_cast<int>(visible.size());
     const auto matches = match_frame_steps(f.steps, real, gt);
-    for (const StepMatch& m : matches) s.frame_steps_matched += visible.count(m.real) ? 1 : 0;
+    const auto matched_visible = [&](const std::vector<StepMatch>& ms) {
+      return static_cast<int>(std::count_if(ms.begin(), ms.end(), [&](const StepMatch& m) { return visible.count(m.real) > 0; }));
+    };
+    s.frame_steps_matched += matched_visible(matches);
+    if (f.tracked_steps) {
+      s.tracked_scored = true;
+      const auto tracked = match_frame_steps(*f.tracked_steps, real, gt);
+      s.tracked_steps_matched += matched_visible(tracked);
+      s.tracked_false_steps += static_cast<int>(f.tracked_steps->size() - tracked.size());
+    }
     if (f.K) {
       std::set<int> with_nosing;
       for (int v : visible)
@@ -253,6 +250,8 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
     }
   }
   if (s.visible_steps > 0) s.frame_step_detection = double(s.frame_steps_matched) / s.visible_steps;
+  if (s.visible_steps > 0 && s.tracked_scored)
+    s.frame_step_detection_tracked = double(s.tracked_steps_matched) / s.visible_steps;
   if (s.visible_steps_nosing_in_view > 0)
     s.frame_step_detection_nosing_in_view =
         double(s.frame_steps_matched_nosing_in_view) / s.visible_steps_nosing_in_view;

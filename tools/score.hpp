@@ -17,6 +17,10 @@ struct FrameResult {
   CameraPose camera;
   Direction direction = Direction::None;
   std::vector<Step> steps;  // nearest first, gravity-aligned camera frame
+  // The tracker's model steps relative to its camera after this frame (same
+  // frame; tracker/model_output.hpp steps_from_camera), absent when no tracker
+  // ran; empty while the model has no camera.
+  std::optional<std::vector<Step>> tracked_steps;
   // "perception", "tracker" and perception's own stages as "perception/<name>".
   std::vector<StageLatency> latency;
   std::optional<GroundTruthFrame> truth;
@@ -50,6 +54,14 @@ struct Score {
   std::optional<double> frame_step_detection_nosing_in_view;
   int frame_false_steps = 0;  // detections matched to no real step, all frames
   int frames_with_false_steps = 0;
+  // Table 6.1 over the tracker's steps relative to the camera (FrameResult::
+  // tracked_steps) instead of perception's: what the whole system knows of the
+  // visible steps on each frame. Same denominator (visible_steps); a frame
+  // without tracked steps matches none. Absent when no tracker ran.
+  bool tracked_scored = false;  // some frame had tracked steps (a tracker ran)
+  int tracked_steps_matched = 0;
+  std::optional<double> frame_step_detection_tracked;
+  int tracked_false_steps = 0;  // tracked steps matched to no real step, all frames
   // Tables 6.2-6.4: the final model (absent when no tracker ran).
   bool model_scored = false;
   int model_steps_real = 0;

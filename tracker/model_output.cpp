@@ -1,5 +1,6 @@
 #include "tracker/model_output.hpp"
 
+#include "common/gravity_frame.hpp"
 #include "tracker/config.hpp"
 
 #include <cmath>
@@ -107,6 +108,20 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
   while (k + 1 < static_cast<int>(step_x.size()) && step_x[k + 1] <= cam.x()) ++k;
   out.camera_step_index = k;
   out.camera_height_m = cam.z() - (k < 0 ? 0.0 : step_z[k]);
+}
+
+std::vector<Step> steps_from_camera(const StairModel& model) {
+  std::vector<Step> out;
+  if (!model.camera_valid) return out;
+  const Eigen::Isometry3d to_camera =
+      gravity_frame_pose(model.camera_position_m, model.camera_orientation).inverse();
+  for (const Flight& f : model.flights)
+    for (Step s : f.steps) {
+      s.nosing_m = to_camera * s.nosing_m;
+      s.riser_plane = s.tread_plane = -1;  // the model's planes are not carried along
+      out.push_back(s);
+    }
+  return out;
 }
 
 }  // namespace stairs

@@ -17,4 +17,12 @@ struct TrackerConfig;
 void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
                 const Eigen::Quaterniond& gravity_rotation, const TrackerConfig& c, StairModel& out);
 
+// The model's steps as seen from its camera: every flight's steps, bottom to
+// top, with nosings in the camera's gravity-aligned frame (an observation's
+// frame). This is what the tracker knows of the steps around the camera on a
+// frame, including those whose edges perception cannot see (a tread whose
+// front is below the image, a landing whose nosing has passed beneath). Empty
+// when the model's camera is not valid.
+std::vector<Step> steps_from_camera(const StairModel& model);
+
 }  // namespace stairs

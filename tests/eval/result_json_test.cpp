@@ -57,6 +57,7 @@ TEST(EvalResultJson, EveryDesignKeyPresentNullWhereUnknown) {
   EXPECT_TRUE(f["steps"][0]["tread_depth_m"].is_null());
   expect_keys(f["latency_ms"], {"perception", "tracker"}, "latency_ms");
   EXPECT_TRUE(f["latency_ms"]["tracker"].is_null());
+  EXPECT_TRUE(f["tracked_steps"].is_null()) << "no tracker ran";
 }
 
 TEST(EvalResultJson, ModelAndScoreKeys) {
@@ -67,6 +68,7 @@ TEST(EvalResultJson, ModelAndScoreKeys) {
   r.frames[0].direction = Direction::Up;
   r.frames[0].truth = camera_frame(-1.5, 0.0, 1.0, -35.0);
   const GroundTruth truth = straight_stair();
+  r.frames[0].tracked_steps = perfect_detections(truth, *r.frames[0].truth);
   StairModel m;
   m.direction = Direction::Up;
   m.flights = truth.flights;
@@ -79,6 +81,8 @@ TEST(EvalResultJson, ModelAndScoreKeys) {
   EXPECT_EQ(f["camera"]["height_m"], 1.0);
   EXPECT_TRUE(f["camera"]["distance_m"].is_null());
   EXPECT_EQ(f["direction"], "up");
+  ASSERT_EQ(f["tracked_steps"].size(), size_t(kSteps));
+  for (const json& s : f["tracked_steps"]) expect_step(s, "tracked step");
 
   expect_keys(j["model"], {"direction", "flights"}, "model");
   EXPECT_EQ(j["model"]["direction"], "up");
@@ -101,6 +105,9 @@ TEST(EvalResultJson, ModelAndScoreKeys) {
   // One frame, one detection that is no real nosing: a false step, 0 of 5 seen.
   EXPECT_EQ(s["false_steps"]["frames"], 1);
   EXPECT_EQ(s["frame_step_detection"], 0.0);
+  EXPECT_EQ(s["frame_step_detection_tracked"], 1.0);
+  EXPECT_EQ(s["frame_steps_matched_tracked"], kSteps);
+  EXPECT_EQ(s["false_steps"]["frames_tracked"], 0);
   EXPECT_EQ(s["pitch_error_deg"], 0.0);
   EXPECT_TRUE(s["roll_error_deg"].is_number());
   expect_keys(s["latency_ms"]["perception"], {"median", "p95"}, "latency_ms.perception");
@@ -114,6 +121,8 @@ TEST(EvalResultJson, ScoreWithoutModelHasNulls) {
   for (const char* k : {"model_steps_detected", "model_steps_real", "riser_error_cm", "tread_error_cm"})
     EXPECT_TRUE(s[k].is_null()) << k;
   EXPECT_TRUE(s["false_steps"]["model"].is_null());
+  EXPECT_TRUE(s["frame_step_detection_tracked"].is_null());
+  EXPECT_TRUE(s["false_steps"]["frames_tracked"].is_null());
   EXPECT_TRUE(s["pitch_error_deg"].is_null());  // no valid pose
 }
 

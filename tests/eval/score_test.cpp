@@ -100,6 +100,28 @@ TEST(EvalScore, FalseStepsCountedPerFrameAndInModel) {
   EXPECT_EQ(s.model_steps_detected, kSteps);
 }
 
+TEST(EvalScore, TrackedStepsScoredApartFromPerception) {
+  FabricatedRun run;
+  EXPECT_FALSE(run.score().frame_step_detection_tracked) << "no tracker ran: no tracked score";
+  // Perception misses step 2 everywhere; the tracker knows every step on the
+  // first two frames, has no camera on the third, and adds one bogus step.
+  for (size_t i = 0; i < run.frames.size(); ++i) {
+    FrameResult& f = run.frames[i];
+    f.tracked_steps = i < 2 ? f.steps : std::vector<Step>{};
+    f.steps.erase(f.steps.begin() + 2);
+  }
+  Step bogus;
+  bogus.nosing_m = {6.0, 0.0, 0.5};
+  run.frames[0].tracked_steps->push_back(bogus);
+  const Score s = run.score();
+  EXPECT_DOUBLE_EQ(*s.frame_step_detection, 12.0 / 15.0);
+  ASSERT_TRUE(s.frame_step_detection_tracked);
+  EXPECT_EQ(s.tracked_steps_matched, 10);
+  EXPECT_DOUBLE_EQ(*s.frame_step_detection_tracked, 10.0 / 15.0);
+  EXPECT_EQ(s.tracked_false_steps, 1);
+  EXPECT_EQ(s.frame_false_steps, 0);
+}
+
 TEST(EvalScore, MatchToleranceIsHalfTreadAndHalfRiser) {
   FabricatedRun run;
   auto& steps = run.frames[0].steps;

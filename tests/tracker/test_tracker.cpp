@@ -3,6 +3,7 @@
 // tread errors under 1 cm and no false steps, at slow and walking speed, with
 // dropped frames and gaps, ascending, descending and over two flights.
 #include "synthetic_stair.hpp"
+#include "tracker/model_output.hpp"
 #include "tracker/tracker.hpp"
 
 #include <gtest/gtest.h>
@@ -230,4 +231,31 @@ TEST(Tracker, ModelStepsAreCapped) {
   EXPECT_GE(steps, 2u);
   EXPECT_LE(steps, 4u);
   EXPECT_LE(tracker.model().planes.size(), 8u);
+}
+
+TEST(Tracker, StepsFromCameraInTheGravityAlignedFrame) {
+  // Camera at (-1, 0.2, 1) in the model frame, heading along +y, 30 deg down:
+  // its forward is +y, its left is -x (worked out by hand).
+  StairModel m;
+  m.camera_valid = true;
+  m.camera_position_m = {-1.0, 0.2, 1.0};
+  const double p = -30.0 * M_PI / 180.0;
+  Eigen::Matrix3d R;
+  R.col(0) = Eigen::Vector3d(1, 0, 0);                              // image right
+  R.col(1) = Eigen::Vector3d(0, std::sin(p), -std::cos(p));         // image down
+  R.col(2) = Eigen::Vector3d(0, std::cos(p), std::sin(p));          // optical axis
+  m.camera_orientation = Eigen::Quaterniond(R);
+  Step s;
+  s.riser_height_m = 0.18;
+  s.nosing_m = {0.5, 1.2, 0.36};
+  m.flights.resize(2);
+  m.flights[1].steps.push_back(s);
+  const std::vector<Step> seen = steps_from_camera(m);
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_NEAR(seen[0].nosing_m.x(), 1.0, 1e-9);
+  EXPECT_NEAR(seen[0].nosing_m.y(), -1.5, 1e-9);
+  EXPECT_NEAR(seen[0].nosing_m.z(), -0.64, 1e-9);
+  EXPECT_EQ(*seen[0].riser_height_m, 0.18);
+  m.camera_valid = false;
+  EXPECT_TRUE(steps_from_camera(m).empty());
 }
