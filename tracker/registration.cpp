@@ -25,6 +25,12 @@ struct Profile {
 Profile profile(const StairMap& map, const TrackerConfig& c) {
   Profile p;
   const double floor_z = floor_z_m(map, c);
+  // The level the first riser stands on (the floor, or the landing the flight
+  // below ends on) runs on before the stair: a lower flight seen beyond the
+  // model's first riser registers its height on it.
+  p.tread_z.push_back(floor_z);
+  p.tread_x_lo.push_back(-std::numeric_limits<double>::infinity());
+  p.tread_x_hi.push_back(map.steps.front().x());
   const double tread = typical_tread_m(map, c);
   for (size_t i = 0; i < map.steps.size(); ++i) {
     const MapStep& s = map.steps[i];
@@ -165,16 +171,17 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
   // Quality: agreement of every plane point with the model at the final pose,
   // risers and treads each on their own: a slip that fits the treads but puts
   // the risers beside the model's must not pass on the treads' majority.
-  // Steps beyond the model's ends are new, not disagreeing: the ratios are
-  // over the points within the model's extent (at least a quarter of all).
+  // Steps beyond the model's ends (before its first riser: below the floor
+  // level) are new, not disagreeing: the ratios are over the points within the
+  // model's extent (at least a quarter of all).
   const Eigen::Vector3d& t = reg.pose.t_m;
   const double x_lo = prof.riser_x.front() - c.accept_distance_m, x_hi = prof.tread_x_hi.back() + c.accept_distance_m;
-  const double z_hi = prof.tread_z.back() + c.accept_distance_m;
+  const double z_hi = prof.tread_z.back() + c.accept_distance_m, z_lo = prof.tread_z.front() - c.accept_distance_m;
   double sq = 0;
   int riser_in = 0, tread_in = 0, riser_within = 0, tread_within = 0;
   auto count = [&](const Eigen::Vector3d& q, double d, int& in, int& within) {
     if (d < c.accept_distance_m) ++in, sq += d * d;
-    if (q.x() >= x_lo && q.x() <= x_hi && q.z() <= z_hi) ++within;
+    if (q.x() <= x_hi && q.z() <= z_hi && (q.x() >= x_lo || q.z() >= z_lo)) ++within;
   };
   for (const auto& p : risers) count(p + t, nearest_riser(prof, p + t).distance, riser_in, riser_within);
   for (const auto& p : treads) count(p + t, nearest_tread(prof, p + t).distance, tread_in, tread_within);

@@ -50,4 +50,18 @@ double surface_z_m(const StairMap& map, double x_m, const TrackerConfig& c) {
   return z;
 }
 
+double mean_surface_z_m(const StairMap& map, double x_m, const TrackerConfig& c) {
+  // Exact mean of the piecewise-constant surface over [x - half, x + half].
+  const double half = 0.5 * typical_tread_m(map, c);
+  double at = x_m - half, z = surface_z_m(map, at, c), sum = 0.0;
+  for (const MapStep& s : map.steps)
+    if (s.x() > at && s.x() < x_m + half) {
+      sum += (s.x() - at) * z;
+      at = s.x();
+      z = s.z();
+    }
+  sum += (x_m + half - at) * z;
+  return sum / (2.0 * half);
+}
+
 }  // namespace stairs

@@ -52,6 +52,10 @@ double typical_tread_m(const StairMap& map, const TrackerConfig& c);
 // behind x, the floor before the first.
 double surface_z_m(const StairMap& map, double x_m, const TrackerConfig& c);
 
+// The surface at x averaged over one typical tread around it: the stair's mean
+// slope on a flight, level on a landing or floor (what a walker's head follows).
+double mean_surface_z_m(const StairMap& map, double x_m, const TrackerConfig& c);
+
 // Height of the floor below the first step.
 double floor_z_m(const StairMap& map, const TrackerConfig& c);
 

@@ -76,6 +76,9 @@ Pose4 Tracker::predict(int64_t utime) const {
   const double span = seconds(t1 - t0);
   Pose4 p = p1;
   p.t_m += (p1.t_m - p0.t_m) * (dt / span);
+  // Height follows the stair's mean slope under the camera, not the last
+  // vertical speed: a gap across a flight's end would carry its slope on.
+  p.t_m.z() = p1.t_m.z() + mean_surface_z_m(map_, p.t_m.x(), config_) - mean_surface_z_m(map_, p1.t_m.x(), config_);
   p.yaw_rad = wrap_angle(p1.yaw_rad + wrap_angle(p1.yaw_rad - p0.yaw_rad) * (dt / span));
   return p;
 }

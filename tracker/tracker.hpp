@@ -1,6 +1,7 @@
 // The incremental stair model fused over observations (thesis chapter 5),
-// tracked at walking speed: seed, predict (constant velocity), register (4-DoF,
-// re-localising after gaps), merge, reconstruct, publish in the stair frame.
+// tracked at walking speed: seed, predict (constant velocity, height along the
+// stair's mean slope), register (4-DoF, re-localising after gaps), merge,
+// reconstruct, publish in the stair frame.
 #pragma once
 
 #include "common/types.hpp"
