@@ -92,7 +92,7 @@ void complete_descending(const PlaneSet& ps, const StairChain& chain, std::vecto
 void reconstruct(PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps, const PerceptionConfig& cfg) {
   const bool up = chain.direction == Direction::Up;
   if (up) complete_ascending(ps, chain, steps, cfg);
-  else complete_descending(ps, chain, steps, cfg);
+  else if (chain.direction == Direction::Down) complete_descending(ps, chain, steps, cfg);
   // Steps are nearest first: going up the next step is farther and higher,
   // going down the next step is farther and lower; either way a tread reaches
   // from its nosing to the next nosing.
