@@ -34,6 +34,7 @@ struct PerceptionConfig {
   float beneath_view_edge_margin_m = 0.1f;   // m; a surface whose near edge is this close to where
   float beneath_view_edge_tolerance = 0.15f;  // (+ this fraction) the image's bottom row meets its
                                               // height runs on beneath the camera
+  float beneath_same_level_m = 0.04f;         // m; a nosing this far below a surface is still at its level
 
   // --- edges_depth_jumps
   float edge_jump_min_m = 0.05f;        // m; depth step between vertical neighbours that is a jump
@@ -46,6 +47,25 @@ struct PerceptionConfig {
   int edge_max_lines_per_group = 3;     // lines fitted per height group
   float edge_max_tilt_deg = 10.0f;      // a step edge is horizontal within this
   float edge_max_axis_deg = 20.0f;      // and across the stair axis within this
+
+  // --- edges_normal_image (thesis 3.4.1): gravity-aligned normals as colours, Canny, contours, Hough
+  int normal_edge_blur_cells = 1;         // cells; Gaussian blur radius before Canny: the two edges of a
+                                          // rounded nosing's band of in-between normals become one
+  float normal_edge_canny_low = 100.0f;   // Canny hysteresis thresholds on the 3x3 Sobel L1 gradient
+  float normal_edge_canny_high = 200.0f;  // of the 8-bit normal image (a sharp 90 deg bend gives ~500)
+  float normal_edge_min_contour_px = 32.0f;  // px at 640x480; shorter edge curves (their span) are noise
+  float normal_edge_hough_theta_deg = 1.0f;  // deg; Hough angle resolution (rho: one grid cell)
+  float normal_edge_hough_votes_px = 32.0f;  // px at 640x480; edge pixels on a line for a Hough line
+  float normal_edge_hough_min_length_px = 48.0f;  // px at 640x480; shorter Hough segments are dropped
+  float normal_edge_hough_max_gap_px = 12.0f;     // px at 640x480; gaps bridged along a Hough segment
+  int normal_edge_side_cells = 2;           // cells; strip on each side of a line giving its two surfaces
+  float normal_edge_min_bend_deg = 30.0f;   // deg; the surfaces on the two sides turn by at least this
+  float normal_edge_max_tilt_deg = 10.0f;   // deg; a step edge is horizontal within this
+  float normal_edge_max_axis_deg = 20.0f;   // deg; and across the stair axis within this
+  float normal_edge_max_range_m = 4.0f;     // m; farther edges are dropped (far normals are noisy)
+  float normal_edge_merge_bin_m = 0.05f;    // m; merge histogram bin of horizontal distance and height
+  float normal_edge_merge_bin_deg = 10.0f;  // deg; merge histogram bin of direction (step edges are all
+                                            // parallel: position tells them apart, short pieces vary)
 
   // --- plane_geometry
   float horizontal_tol_deg = 12.0f;   // tread/landing: normal within this of up
@@ -73,6 +93,7 @@ struct PerceptionConfig {
   int max_sample_points = 1024;  // per tread/riser, spatially even grid subsample
   int max_other_points = 64;     // per other plane
   int max_planes = 64;           // segmented planes reported (<= 192), treads/risers first
+  int max_edges = 256;           // edges reported (<= 256), depth-jump edges first
 };
 
 // Reads a JSON object of parameters (any subset). Throws std::runtime_error

@@ -1,6 +1,7 @@
 #include "perception/pipeline.hpp"
 
 #include "perception/edges_depth_jumps.hpp"
+#include "perception/edges_normal_image.hpp"
 #include "perception/gravity.hpp"
 #include "perception/grammar.hpp"
 #include "perception/plane_geometry.hpp"
@@ -45,19 +46,41 @@ bool usable(const DepthImage& f, std::string& why) {
 // Height above the horizontal surface beneath: the surface below the camera
 // whose near edge is where the image's bottom row meets its height (it runs
 // on towards the camera; a table top ends farther out); of several, the
-// lowest (the floor beside a table). None when no such surface is in view:
-// on a flight the tread beneath is out of view, and the tracker's model
-// knows the height there.
-std::optional<double> camera_height(const PlaneSet& ps, const Intrinsics& K, double pitch_deg,
-                                    const PerceptionConfig& cfg) {
+// lowest (the floor beside a table). A surface whose near edge is a step's
+// nosing, at its level (its own front: going up the tread ahead) or above it
+// (the step down to it: looking down a flight the bottom row meets a tread
+// several steps down), or that has a higher tread entirely in front of it,
+// starts there and runs beneath no one (unknown beats wrong). Still
+// ambiguous: a tread cut by the image's bottom row that ends at its own nosing
+// ahead looks like the landing the camera stands on. None when no
+// such surface is in view: on a flight the tread beneath is out of view, and
+// the tracker's model knows the height there.
+std::optional<double> camera_height(const PlaneSet& ps, const std::vector<Step>& steps, const Intrinsics& K,
+                                    double pitch_deg, const PerceptionConfig& cfg) {
   const double below_rad = -pitch_deg * M_PI / 180.0 + std::atan((K.height - 1 - K.cy) / K.fy);
   if (below_rad <= 0) return std::nullopt;
+  const auto starts_ahead = [&](const PlaneExtent& e) {
+    for (const Step& st : steps) {
+      const double s = std::cos(ps.yaw_rad) * st.nosing_m.x() + std::sin(ps.yaw_rad) * st.nosing_m.y();
+      if (s < e.s_min + cfg.beneath_view_edge_margin_m && st.nosing_m.z() > e.z_mean - cfg.beneath_same_level_m)
+        return true;
+    }
+    const float higher_m = cfg.riser_min_m * (1 - cfg.din_tolerance);
+    for (size_t j = 0; j < ps.planes.size(); ++j) {
+      const PlaneExtent& u = ps.extents[j];
+      if (ps.planes[j].kind == PlaneKind::Tread && u.z_mean > e.z_mean + higher_m &&
+          u.s_max < e.s_min + cfg.beneath_view_edge_margin_m)
+        return true;
+    }
+    return false;
+  };
   std::optional<double> height;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
     if (ps.planes[i].kind != PlaneKind::Tread || e.z_mean >= 0) continue;
     const double view_edge_m = below_rad >= M_PI / 2 ? 0.0 : -e.z_mean / std::tan(below_rad);
-    if (e.s_min < view_edge_m * (1 + cfg.beneath_view_edge_tolerance) + cfg.beneath_view_edge_margin_m)
+    if (e.s_min < view_edge_m * (1 + cfg.beneath_view_edge_tolerance) + cfg.beneath_view_edge_margin_m &&
+        !starts_ahead(e))
       height = std::max(height.value_or(0.0), -static_cast<double>(e.z_mean));
   }
   return height;
@@ -96,10 +119,11 @@ Observation Pipeline::process(const DepthImage& frame) {
   obs.camera = pose_from_up(*up);
   const Eigen::Matrix3f R = obs.camera.gravity_rotation.toRotationMatrix().cast<float>();
   PlaneSet ps = plane_geometry(grid_, segments, R, cfg_);
-  obs.camera.height_m = camera_height(ps, frame.K, obs.camera.pitch_deg, cfg_);
   clock.mark("plane_geometry");
   const std::vector<JumpEdge> jump_edges = depth_jump_edges(grid_, R, ps.yaw_rad, cfg_);
   clock.mark("edges_depth_jumps");
+  const std::vector<Edge> normal_edges = normal_image_edges(grid_, R, ps.yaw_rad, cfg_);
+  clock.mark("edges_normal_image");
   const std::vector<Level> levels = tread_levels(ps, jump_edges, cfg_);
   clock.mark("steps");
   const StairChain chain = best_chain(levels, cfg_);
@@ -107,7 +131,9 @@ Observation Pipeline::process(const DepthImage& frame) {
   clock.mark("grammar");
   reconstruct(ps, chain, steps, cfg_);
   clock.mark("reconstruction");
-  if (static_cast<int>(steps.size()) >= cfg_.min_steps) {
+  if (static_cast<int>(steps.size()) < cfg_.min_steps) steps.clear();
+  obs.camera.height_m = camera_height(ps, steps, frame.K, obs.camera.pitch_deg, cfg_);
+  if (!steps.empty()) {
     obs.direction = chain.direction;
     obs.steps = std::move(steps);
     const double d = std::cos(ps.yaw_rad) * obs.steps.front().nosing_m.x() +
@@ -119,6 +145,8 @@ Observation Pipeline::process(const DepthImage& frame) {
   }
   obs.planes = std::move(ps.planes);
   for (const JumpEdge& j : jump_edges) obs.edges.push_back(j.edge);
+  obs.edges.insert(obs.edges.end(), normal_edges.begin(), normal_edges.end());
+  if (obs.edges.size() > static_cast<size_t>(cfg_.max_edges)) obs.edges.resize(cfg_.max_edges);
   clock.finish();
   return obs;
 }

@@ -22,21 +22,35 @@ struct Stats {
   double rate() const { return visible ? static_cast<double>(matched) / visible : 1.0; }
 };
 
-Stats evaluate(const std::string& preset, bool descending, int every = 3) {
-  const sim::Scene scene = sim::make_preset(preset);
+// A hand-held walk through a preset at 640x480, sensor model on.
+struct HandHeldWalk {
+  HandHeldWalk(const std::string& preset, bool descending)
+      : scene(sim::make_preset(preset)), renderer(scene, K, sim::SensorModel{}, 7), traj(scene, config(descending)) {}
+  static sim::TrajectoryConfig config(bool descending) {
+    sim::TrajectoryConfig tc = sim::trajectory_defaults(sim::Carrier::HandHeld);
+    tc.descending = descending;
+    return tc;
+  }
+  DepthImage render(int i) { return renderer.render(traj.pose(i), static_cast<int64_t>(traj.time_s(i) * 1e6), i); }
+  GroundTruthFrame truth(int i, const DepthImage& img) const { return renderer.truth(traj.pose(i), traj.time_s(i), img); }
+
   const Intrinsics K{640, 480, 525.0, 525.0, 319.5, 239.5};
-  sim::Renderer renderer(scene, K, sim::SensorModel{}, 7);
-  sim::TrajectoryConfig tc = sim::trajectory_defaults(sim::Carrier::HandHeld);
-  tc.descending = descending;
-  const sim::Trajectory traj(scene, tc);
-  const GroundTruth gt = renderer.stair_truth();
+  const sim::Scene scene;
+  sim::Renderer renderer;
+  const sim::Trajectory traj;
+};
+
+Stats evaluate(const std::string& preset, bool descending, int every = 3) {
+  HandHeldWalk walk(preset, descending);
+  const Intrinsics& K = walk.K;
+  const sim::Trajectory& traj = walk.traj;
+  const GroundTruth gt = walk.renderer.stair_truth();
   const std::vector<Step> truth_steps = eval::real_steps(gt);
   Pipeline pipeline;
   Stats st;
   for (int i = 0; i < traj.frames(); i += every) {
-    const Eigen::Isometry3d pose = traj.pose(i);
-    const DepthImage img = renderer.render(pose, static_cast<int64_t>(traj.time_s(i) * 1e6), i);
-    const GroundTruthFrame truth = renderer.truth(pose, traj.time_s(i), img);
+    const DepthImage img = walk.render(i);
+    const GroundTruthFrame truth = walk.truth(i, img);
     const Observation obs = pipeline.process(img);
     ++st.frames;
     if (obs.camera.valid) {
@@ -84,6 +98,29 @@ void expect_accurate(const Stats& st) {
 TEST(PerceptionSimAccuracy, DISABLED_Ascending) { expect_accurate(evaluate("straight_up", false)); }
 TEST(PerceptionSimAccuracy, DISABLED_Descending) { expect_accurate(evaluate("straight_down", true)); }
 TEST(PerceptionSimAccuracy, DISABLED_RampPitch) { EXPECT_LE(evaluate("ramp", false).pitch_err, 1.0); }
+
+// Looking down a flight the image's bottom row meets a tread several steps
+// down; its near edge is the step down to it, so it is no surface beneath the
+// camera. Measured 2026-11-30 over the frames where perception sees the
+// staircase: 9 of 11 reported heights within 1 cm; the other 2 are a tread cut
+// by the bottom row that ends at its own nosing, which a single frame cannot
+// tell from the landing beneath (pipeline.cpp camera_height). Before the rule,
+// most reported heights were those of a tread 1 to 6 steps down.
+TEST(PerceptionSimAccuracy, DescendingHeightIsMostlyAboveTheSurfaceBeneath) {
+  HandHeldWalk walk("straight_down", true);
+  Pipeline pipeline;
+  int heights = 0, right = 0;
+  for (int i = 0; i < walk.traj.frames(); i += 3) {
+    const DepthImage img = walk.render(i);
+    const Observation obs = pipeline.process(img);
+    if (obs.steps.empty() || !obs.camera.height_m) continue;
+    ++heights;
+    right += std::abs(*obs.camera.height_m - walk.truth(i, img).height_m) <= 0.03 ? 1 : 0;
+  }
+  std::printf("straight_down: %d of %d heights within 3 cm\n", right, heights);
+  EXPECT_GT(heights, 5);
+  EXPECT_GE(right, 0.8 * heights);
+}
 
 TEST(PerceptionSimAccuracy, NoStairsOnNonStairScenes) {
   for (const char* preset : {"flat_room", "ramp", "curb"}) {

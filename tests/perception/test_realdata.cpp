@@ -2,6 +2,7 @@
 // observation. Reference values are the converter's levelled measurements
 // in SOURCE.md (not ground truth), so the bounds are loose.
 #include "common/sequence.hpp"
+#include "perception/normals.hpp"
 #include "perception/pipeline.hpp"
 
 #include <gtest/gtest.h>
@@ -73,6 +74,62 @@ TEST(PerceptionRealdata, Kinect1ThesisPose) {
     ASSERT_TRUE(o.camera.height_m.has_value());
     EXPECT_NEAR(*o.camera.height_m, 0.648, 0.03);
   }
+}
+
+// Image row of a point of the gravity-aligned camera frame.
+double image_row(const Observation& o, const Intrinsics& K, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d q = o.camera.gravity_rotation.conjugate() * p;
+  return K.fy * q.y() / q.z() + K.cy;
+}
+
+// Normal-image edges (thesis 3.4.1): a convex edge runs through the nosing
+// (within 5 cm across the edge) of every detected step whose tread is in
+// view: the next riser's foot at least 2 normal radii above the nosing in the
+// image (a thinner strip of tread has no normals of its own). The last step's
+// tread is cut by the image or unseen.
+TEST(PerceptionRealdata, NormalImageEdgesAtTheNosings) {
+  const PerceptionConfig cfg;
+  int convex = 0, concave = 0, frames = 0, checked = 0;
+  for (const auto& [dir, frame] : {std::pair<std::string, size_t>{"kinect1_thesis_up", 0}, {"kinect1_thesis_up", 1},
+                                   {"kinect2_lab_up", 0}, {"kinect2_lab_up", 1}}) {
+    if (!std::filesystem::exists(kRealdata + dir)) continue;
+    ++frames;
+    SequenceReader seq(kRealdata + dir);
+    const DepthImage img = seq.read(frame);
+    Pipeline pipeline(cfg);
+    const Observation o = pipeline.process(img);
+    std::vector<Edge> edges;
+    for (const Edge& e : o.edges)
+      if (e.source == EdgeSource::NormalImage) edges.push_back(e);
+    std::printf("%s[%zu]: %zu normal-image edges\n", dir.c_str(), frame, edges.size());
+    for (const Edge& e : edges) {
+      std::printf("  %s (%.3f %.3f %.3f) - (%.3f %.3f %.3f) support %d\n",
+                  e.type == EdgeType::Convex ? "convex " : "concave", e.start.x(), e.start.y(), e.start.z(),
+                  e.end.x(), e.end.y(), e.end.z(), e.support);
+      (e.type == EdgeType::Convex ? convex : concave)++;
+    }
+    const double min_rows = 2.0 * cfg.normal_radius_cells * grid_cell_px(cfg, img.K.width);
+    for (size_t i = 0; i + 1 < o.steps.size(); ++i) {
+      const Eigen::Vector3d& n = o.steps[i].nosing_m;
+      const Eigen::Vector3d next_foot(o.steps[i + 1].nosing_m.x(), o.steps[i + 1].nosing_m.y(), n.z());
+      const double row = image_row(o, img.K, n), tread_rows = row - image_row(o, img.K, next_foot);
+      double best = 1e9;
+      for (const Edge& e : edges) {
+        if (e.type != EdgeType::Convex) continue;
+        const Eigen::Vector3d a = e.start.cast<double>(), u = (e.end - e.start).cast<double>().normalized();
+        best = std::min(best, ((n - a) - (n - a).dot(u) * u).norm());
+      }
+      std::printf("   nosing (%.2f %.2f %.2f), row %.0f, tread %.0f rows: nearest convex edge %.3f m\n", n.x(), n.y(),
+                  n.z(), row, tread_rows, best);
+      if (row < 0 || row >= img.K.height || tread_rows < min_rows) continue;
+      ++checked;
+      EXPECT_LT(best, 0.05) << dir << "[" << frame << "] nosing at " << n.transpose();
+    }
+  }
+  if (frames == 0) GTEST_SKIP() << "no " << kRealdata;
+  std::printf("%d frames: %d convex, %d concave normal-image edges; %d nosings checked\n", frames, convex, concave,
+              checked);
+  EXPECT_GE(checked, frames);
 }
 
 TEST(PerceptionRealdata, Kinect2LookingDown) { check("kinect2_lab_up", 0, {-76.2, 13.0, 0.964, 0.10, 2}); }
