@@ -78,9 +78,9 @@ void print_report(std::ostream& out, const RunResult& r) {
     out << "No ground truth: no scores.\n";
   out << "\n";
   if (r.model) print_model(out, *r.model);
-  out << "\nLatency (ms)                     median       p95      n\n";
+  out << "\nLatency (ms)                       median       p95      n\n";
   for (const auto& [name, l] : latency_by_stage(r.frames))
-    out << fmt("  %-28s %9.2f %9.2f %6d\n", name.c_str(), l.median_ms, l.p95_ms, l.n);
+    out << fmt("  %-30s %9.2f %9.2f %6d\n", name.c_str(), l.median_ms, l.p95_ms, l.n);
 }
 
 }  // namespace stairs::eval
