@@ -44,13 +44,10 @@ class PerceptionFaults : public ::testing::Test {
 
   // Starts a daemon and waits for its first status message, sent once it has subscribed.
   void start(std::unique_ptr<test::DaemonProcess>& d) {
-    status_.last.reset();
-    d = std::make_unique<test::DaemonProcess>(
-        "stairs-perception", std::vector<std::string>{"--lcm-url", kUrl, "--depth-channel", test::channel("DEPTH"),
-                                                      "--observation-channel", test::channel("OBS"), "--status-channel",
-                                                      test::channel("STATUS")});
-    ASSERT_TRUE(test::pump_until(lcm_, [&] { return status_.last && status_.last->received == 0; }))
-        << "no status from the new daemon";
+    d = test::start_daemon(lcm_, status_, "stairs-perception",
+                           {"--lcm-url", kUrl, "--depth-channel", test::channel("DEPTH"), "--observation-channel",
+                            test::channel("OBS"), "--status-channel", test::channel("STATUS")});
+    ASSERT_TRUE(d) << "no status from the new daemon";
   }
 
   void send(int32_t seq) {

@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -92,5 +93,15 @@ struct StatusWatch {
     if (s->name == name) last = *s;
   }
 };
+
+// Starts `program` with `args` and waits for its first status message on
+// `status`, which a daemon sends once it has subscribed; null if none came.
+inline std::unique_ptr<DaemonProcess> start_daemon(lcm::LCM& lcm, StatusWatch& status, const std::string& program,
+                                                   const std::vector<std::string>& args) {
+  status.last.reset();
+  auto d = std::make_unique<DaemonProcess>(program, args);
+  if (!pump_until(lcm, [&] { return status.last && status.last->received == 0; })) return nullptr;
+  return d;
+}
 
 }  // namespace stairs::test

@@ -46,13 +46,10 @@ class TrackerFaults : public ::testing::Test {
 
   // Starts a daemon and waits for its first status message, sent once it has subscribed.
   void start(std::unique_ptr<test::DaemonProcess>& d) {
-    status_.last.reset();
-    d = std::make_unique<test::DaemonProcess>(
-        "stairs-tracker", std::vector<std::string>{"--lcm-url", kUrl, "--observation-channel", test::channel("OBS"),
-                                                   "--model-channel", test::channel("MODEL"), "--status-channel",
-                                                   test::channel("STATUS")});
-    ASSERT_TRUE(test::pump_until(lcm_, [&] { return status_.last && status_.last->received == 0; }))
-        << "no status from the new daemon";
+    d = test::start_daemon(lcm_, status_, "stairs-tracker",
+                           {"--lcm-url", kUrl, "--observation-channel", test::channel("OBS"), "--model-channel",
+                            test::channel("MODEL"), "--status-channel", test::channel("STATUS")});
+    ASSERT_TRUE(d) << "no status from the new daemon";
   }
 
   // The observation from walk position `k` at that position's utime, tagged `seq`.
