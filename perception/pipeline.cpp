@@ -50,9 +50,10 @@ bool usable(const DepthImage& f, std::string& why) {
 // nosing, at its level (its own front: going up the tread ahead) or above it
 // (the step down to it: looking down a flight the bottom row meets a tread
 // several steps down), or that has a higher tread entirely in front of it,
-// starts there and runs beneath no one (unknown beats wrong). Still
-// ambiguous: a tread cut by the image's bottom row that ends at its own nosing
-// ahead looks like the landing the camera stands on. None when no
+// starts there and runs beneath no one; then the height is unknown (unknown
+// beats wrong). Still ambiguous: going up, a tread whose front is below the
+// image looks like the floor; beside an open-sided flight the floor below is
+// the lowest surface in view. None when no
 // such surface is in view: on a flight the tread beneath is out of view, and
 // the tracker's model knows the height there.
 std::optional<double> camera_height(const PlaneSet& ps, const std::vector<Step>& steps, const Intrinsics& K,
@@ -74,16 +75,19 @@ std::optional<double> camera_height(const PlaneSet& ps, const std::vector<Step>&
     }
     return false;
   };
-  std::optional<double> height;
+  // The lowest surface reaching the bottom row; if it starts ahead, a higher
+  // one (a box top beside the floor) is no better a guess.
+  const PlaneExtent* lowest = nullptr;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
     if (ps.planes[i].kind != PlaneKind::Tread || e.z_mean >= 0) continue;
     const double view_edge_m = below_rad >= M_PI / 2 ? 0.0 : -e.z_mean / std::tan(below_rad);
     if (e.s_min < view_edge_m * (1 + cfg.beneath_view_edge_tolerance) + cfg.beneath_view_edge_margin_m &&
-        !starts_ahead(e))
-      height = std::max(height.value_or(0.0), -static_cast<double>(e.z_mean));
+        (!lowest || e.z_mean < lowest->z_mean))
+      lowest = &e;
   }
-  return height;
+  if (!lowest || starts_ahead(*lowest)) return std::nullopt;
+  return -static_cast<double>(lowest->z_mean);
 }
 
 }  // namespace
