@@ -51,19 +51,18 @@ bool usable(const DepthImage& f, std::string& why) {
 // (the step down to it: looking down a flight the bottom row meets a tread
 // several steps down), or that has a higher tread entirely in front of it,
 // starts there and runs beneath no one; then the height is unknown (unknown
-// beats wrong). Still ambiguous: going up, a tread whose front is below the
-// image looks like the floor; beside an open-sided flight the floor below is
-// the lowest surface in view. None when no
-// such surface is in view: on a flight the tread beneath is out of view, and
-// the tracker's model knows the height there.
+// beats wrong). None when no such surface is in view: on a flight the tread
+// beneath is out of view, and the tracker's model knows the height there.
+// Still ambiguous: going up, a tread whose front is below the image looks like
+// the floor; beside an open-sided flight the floor below is the lowest surface
+// in view.
 std::optional<double> camera_height(const PlaneSet& ps, const std::vector<Step>& steps, const Intrinsics& K,
                                     double pitch_deg, const PerceptionConfig& cfg) {
   const double below_rad = -pitch_deg * M_PI / 180.0 + std::atan((K.height - 1 - K.cy) / K.fy);
   if (below_rad <= 0) return std::nullopt;
   const auto starts_ahead = [&](const PlaneExtent& e) {
     for (const Step& st : steps) {
-      const double s = std::cos(ps.yaw_rad) * st.nosing_m.x() + std::sin(ps.yaw_rad) * st.nosing_m.y();
-      if (s < e.s_min + cfg.beneath_view_edge_margin_m && st.nosing_m.z() > e.z_mean - cfg.beneath_same_level_m)
+      if (ps.axial(st.nosing_m) < e.s_min + cfg.beneath_view_edge_margin_m && st.nosing_m.z() > e.z_mean - cfg.beneath_same_level_m)
         return true;
     }
     const float higher_m = cfg.riser_min_m * (1 - cfg.din_tolerance);
@@ -140,8 +139,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   if (!steps.empty()) {
     obs.direction = chain.direction;
     obs.steps = std::move(steps);
-    const double d = std::cos(ps.yaw_rad) * obs.steps.front().nosing_m.x() +
-                     std::sin(ps.yaw_rad) * obs.steps.front().nosing_m.y();
+    const double d = ps.axial(obs.steps.front().nosing_m);
     if (d > 0) obs.camera.distance_m = d;
     obs.status = "ok";
   } else {

@@ -22,6 +22,8 @@ struct PlaneSet {
   float yaw_rad = 0;                 // stair axis relative to camera forward
   // Stair-aligned (s, t, z) -> gravity-aligned camera frame.
   Eigen::Vector3f to_camera(float s, float t, float z) const;
+  // Gravity-aligned camera frame -> position along the stair axis (s).
+  float axial(const Eigen::Vector3d& p) const;
 };
 
 // Merges the segments (optical frame) rotated by `gravity` (optical ->

@@ -9,12 +9,6 @@ namespace stairs {
 
 namespace {
 
-// Nosing position along the stair axis.
-float axial(const PlaneSet& ps, const Step& s) {
-  return std::cos(ps.yaw_rad) * static_cast<float>(s.nosing_m.x()) +
-         std::sin(ps.yaw_rad) * static_cast<float>(s.nosing_m.y());
-}
-
 // A segmented riser whose face lies at axial position s and which spans
 // upwards (above = true) or downwards from height z.
 int riser_at(const PlaneSet& ps, float s, float z, bool above) {
@@ -98,8 +92,8 @@ void reconstruct(PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps
   // from its nosing to the next nosing.
   for (size_t k = 0; k < steps.size(); ++k) {
     if (up && k + 1 == steps.size() && steps[k].tread_plane < 0) steps[k].tread_depth_m.reset();
-    if (up && k + 1 < steps.size()) steps[k].tread_depth_m = axial(ps, steps[k + 1]) - axial(ps, steps[k]);
-    if (!up && k >= 1) steps[k].tread_depth_m = axial(ps, steps[k]) - axial(ps, steps[k - 1]);
+    if (up && k + 1 < steps.size()) steps[k].tread_depth_m = ps.axial(steps[k + 1].nosing_m) - ps.axial(steps[k].nosing_m);
+    if (!up && k >= 1) steps[k].tread_depth_m = ps.axial(steps[k].nosing_m) - ps.axial(steps[k - 1].nosing_m);
     steps[k].landing = steps[k].tread_depth_m && *steps[k].tread_depth_m > cfg.landing_min_depth_m;
   }
   if (up) return;
@@ -107,7 +101,7 @@ void reconstruct(PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps
     Step& s = steps[k];
     if (s.riser_plane >= 0 || !s.riser_height_m) continue;
     const Level& tread = chain.levels[k];
-    const float sa = axial(ps, s), top = tread.z, bottom = tread.z - static_cast<float>(*s.riser_height_m);
+    const float sa = ps.axial(s.nosing_m), top = tread.z, bottom = tread.z - static_cast<float>(*s.riser_height_m);
     Plane p;
     p.kind = PlaneKind::Riser;
     p.source = PlaneSource::Reconstructed;
