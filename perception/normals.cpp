@@ -13,23 +13,37 @@ int grid_cell_px(const PerceptionConfig& cfg, int image_width) {
 
 namespace {
 
-// Mean of the valid pixels of each cell, back-projected at the cell's mean pixel.
+// Each cell is the mean of its nearest surface: the valid pixels within
+// jump_ratio of its nearest one, back-projected at their mean pixel. Pixels of
+// a farther surface behind a depth edge are left out rather than averaged in
+// (the mean would float between both) or voiding the cell (far treads seen from
+// above are strips a few cells tall, between edges); at range the sensor drops
+// many pixels, so a fraction of the cell suffices.
 void cell_means(const DepthImage& frame, const PerceptionConfig& cfg, NormalGrid& g) {
   const Intrinsics& K = frame.K;
   const uint16_t lo = static_cast<uint16_t>(std::clamp(cfg.min_depth_m / frame.depth_scale, 1.0, 65535.0));
   const uint16_t hi = static_cast<uint16_t>(std::clamp(cfg.max_depth_m / frame.depth_scale, 1.0, 65535.0));
+  const uint32_t min_n = std::max<uint32_t>(
+      1, static_cast<uint32_t>(std::ceil(cfg.cell_min_valid_fraction * g.cell_px * g.cell_px)));
   for (int gy = 0; gy < g.height; ++gy) {
     for (int gx = 0; gx < g.width; ++gx) {
-      uint32_t sum = 0, n = 0, su = 0, sv = 0;
-      uint16_t d_min = 65535, d_max = 0;
       const int u0 = gx * g.cell_px, v0 = gy * g.cell_px;
+      uint16_t d_min = 65535;
+      for (int v = v0; v < v0 + g.cell_px; ++v) {
+        const uint16_t* row = frame.depth.data() + static_cast<size_t>(v) * K.width;
+        for (int u = u0; u < u0 + g.cell_px; ++u)
+          if (row[u] >= lo && row[u] <= hi) d_min = std::min(d_min, row[u]);
+      }
+      const int i = g.index(gx, gy);
+      g.has_point[i] = 0;
+      if (d_min == 65535) continue;
+      const uint32_t limit = d_min + static_cast<uint32_t>(cfg.jump_ratio * d_min);
+      uint32_t sum = 0, n = 0, su = 0, sv = 0;
       for (int v = v0; v < v0 + g.cell_px; ++v) {
         const uint16_t* row = frame.depth.data() + static_cast<size_t>(v) * K.width;
         for (int u = u0; u < u0 + g.cell_px; ++u) {
           const uint16_t d = row[u];
-          if (d >= lo && d <= hi) {
-            d_min = std::min(d_min, d);
-            d_max = std::max(d_max, d);
+          if (d >= lo && d <= limit) {
             sum += d;
             su += u;
             sv += v;
@@ -37,18 +51,8 @@ void cell_means(const DepthImage& frame, const PerceptionConfig& cfg, NormalGrid
           }
         }
       }
-      const int i = g.index(gx, gy);
-      // Half the cell must be measured: a mean over a depth edge would float.
-      if (2 * n < static_cast<uint32_t>(g.cell_px * g.cell_px) || n == 0) {
-        g.has_point[i] = 0;
-        continue;
-      }
+      if (n < min_n) continue;
       const float z = static_cast<float>(sum * frame.depth_scale / n);
-      // A cell across a depth jump would float between both surfaces.
-      if ((d_max - d_min) * frame.depth_scale > cfg.jump_ratio * z) {
-        g.has_point[i] = 0;
-        continue;
-      }
       g.points[i] = back_project(K, static_cast<float>(su) / n, static_cast<float>(sv) / n, z);
       g.has_point[i] = 1;
     }

@@ -91,7 +91,18 @@ json score_to_json(const Score& s) {
 
 json result_to_json(const RunResult& r) {
   json frames = json::array();
-  for (const FrameResult& f : r.frames) frames.push_back(frame_to_json(f));
+  for (size_t i = 0; i < r.frames.size(); ++i) {
+    json frame = frame_to_json(r.frames[i]);
+    // An extra key (DESIGN.md lets readers ignore it): what this frame scored.
+    if (r.score && i < r.score->frames.size() && r.score->frames[i]) {
+      const FrameScore& fs = *r.score->frames[i];
+      frame["score"] = {{"visible_steps", fs.visible},
+                        {"nosing_in_view", fs.nosing_in_view},
+                        {"matched", fs.matched},
+                        {"tracked_matched", fs.tracked ? json(*fs.tracked) : json(nullptr)}};
+    }
+    frames.push_back(std::move(frame));
+  }
   return {{"input", r.input},
           {"frames_total", r.frames_total},
           {"frames_processed", r.frames_processed},

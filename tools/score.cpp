@@ -211,14 +211,23 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
   const std::vector<Step> real = real_steps(truth);
   Accumulator pitch, roll, height, height_visible;
   for (const FrameResult& f : frames) {
+    s.frames.emplace_back();
     if (!f.truth) continue;
     const GroundTruthFrame& gt = *f.truth;
     ++s.frames_scored;
+    FrameScore& fs = s.frames.back().emplace();
+    const auto matched_real = [](const std::vector<StepMatch>& ms, size_t detected) {
+      std::vector<int> out(detected, -1);
+      for (const StepMatch& m : ms) out[static_cast<size_t>(m.detected)] = m.real;
+      return out;
+    };
     std::set<int> visible;
     for (int v : gt.visible_steps)
       if (v >= 0 && v < static_cast<int>(real.size())) visible.insert(v);
     s.visible_steps += static_cast<int>(visible.size());
+    fs.visible.assign(visible.begin(), visible.end());
     const auto matches = match_frame_steps(f.steps, real, gt);
+    fs.matched = matched_real(matches, f.steps.size());
     const auto matched_visible = [&](const std::vector<StepMatch>& ms) {
       return static_cast<int>(std::count_if(ms.begin(), ms.end(), [&](const StepMatch& m) { return visible.count(m.real) > 0; }));
     };
@@ -226,6 +235,7 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
     if (f.tracked_steps) {
       s.tracked_scored = true;
       const auto tracked = match_frame_steps(*f.tracked_steps, real, gt);
+      fs.tracked = matched_real(tracked, f.tracked_steps->size());
       s.tracked_steps_matched += matched_visible(tracked);
       s.tracked_false_steps += static_cast<int>(f.tracked_steps->size() - tracked.size());
     }
@@ -234,6 +244,7 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
       for (int v : visible)
         if (nosing_in_view(gt, real[static_cast<size_t>(v)], *f.K)) with_nosing.insert(v);
       s.visible_steps_nosing_in_view += static_cast<int>(with_nosing.size());
+      fs.nosing_in_view.assign(with_nosing.begin(), with_nosing.end());
       for (const StepMatch& m : matches) s.frame_steps_matched_nosing_in_view += with_nosing.count(m.real) ? 1 : 0;
     }
     const int false_steps = static_cast<int>(f.steps.size() - matches.size());

@@ -39,7 +39,18 @@ struct LatencyStats {
   double p95_ms = 0.0;  // nearest rank
 };
 
+// One frame's share of Table 6.1, for per-frame diagnosis (Result JSON
+// frames[].score): real step indices, bottom first across flights.
+struct FrameScore {
+  std::vector<int> visible;                 // DESIGN.md's visible_steps
+  std::vector<int> nosing_in_view;          // visible ones whose nosing projects into the image
+  std::vector<int> matched;                 // real step per detected step, -1 when false
+  std::optional<std::vector<int>> tracked;  // the same for the tracked steps
+};
+
 struct Score {
+  // Per processed frame, aligned with the run's frames; nullopt without truth.
+  std::vector<std::optional<FrameScore>> frames;
   // Table 6.1: over the frames with ground truth.
   int frames_scored = 0;
   int visible_steps = 0;

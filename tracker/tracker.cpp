@@ -148,8 +148,20 @@ const StairModel& Tracker::update(const Observation& obs) {
   const double jump = (reg.pose.t_m - start_pose.t_m).norm();
   if (reg.inlier_ratio < config_.min_inlier_ratio || jump > config_.max_translation_jump_m + step_m) {
     ++rejected_registrations_;
-    return not_registered("registration rejected (inliers " + std::to_string(reg.inlier_ratio) + ", jump " +
-                          std::to_string(jump) + " m)");
+    const std::string why = "registration rejected (inliers " + std::to_string(reg.inlier_ratio) + ", jump " +
+                            std::to_string(jump) + " m)";
+    // A model only its seed supports is no better evidence than this
+    // observation (a seed can be a poor frame, and with one pose there is no
+    // velocity to predict from): start again from the newer one.
+    if (model_.observations_fused <= 1 && static_cast<int>(obs.steps.size()) >= config_.min_seed_steps) {
+      reset();
+      model_.direction = direction_.update(obs.direction);
+      if (seed(obs)) {
+        model_.status = "reseeded: " + why;
+        return finish();
+      }
+    }
+    return not_registered(why);
   }
 
   merge(map_, observed_steps(obs, reg.pose), reg.pose, config_);

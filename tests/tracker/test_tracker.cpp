@@ -219,6 +219,34 @@ TEST(Tracker, RejectsARegistrationThatJumpsAwayFromTheMotionPrior) {
   EXPECT_EQ(a.false_steps, 0);
 }
 
+TEST(Tracker, ABadSeedThatNoLaterObservationConfirmsIsReplaced) {
+  ObservationMaker maker(kStair, 8);
+  Tracker tracker;
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  // The seed is 20 cm off (a poor frame): every later observation disagrees.
+  Observation bad = maker.make(cams[20], 20 * 33333);
+  ASSERT_GE(bad.steps.size(), 2u);
+  const Eigen::Vector3f off(0.2f, 0.0f, 0.0f);
+  for (auto& st : bad.steps) st.nosing_m += off.cast<double>();
+  for (auto& p : bad.planes) {
+    p.centroid += off;
+    for (auto& c : p.corners) c += off;
+    for (auto& q : p.points) q += off;
+  }
+  EXPECT_EQ(tracker.update(bad).observations_fused, 1);
+  // The next one is rejected against that seed and becomes the new seed.
+  const StairModel& m = tracker.update(maker.make(cams[21], 21 * 33333));
+  EXPECT_EQ(tracker.rejected_registrations(), 1);
+  EXPECT_EQ(tracker.resets(), 1);
+  EXPECT_EQ(m.state, TrackingState::Ok);
+  EXPECT_EQ(m.observations_fused, 1);
+  for (size_t k = 22; k < cams.size(); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  EXPECT_EQ(tracker.rejected_registrations(), 1);
+  const Accuracy a = score(tracker.model(), kStair);
+  EXPECT_EQ(a.matched, a.real_steps);
+  EXPECT_EQ(a.false_steps, 0);
+}
+
 TEST(Tracker, ModelStepsAreCapped) {
   TrackerConfig c;
   c.max_model_steps = 4;
