@@ -87,7 +87,7 @@ struct PerceptionConfig {
   float landing_min_depth_m = 0.50f;  // a tread deeper than this is a landing
   float min_step_width_m = 0.3f;      // m; narrower horizontal planes (chair seats) are no treads
   float max_lateral_gap_m = 0.5f;     // m; consecutive treads must overlap laterally up to this gap
-  float min_riser_seen_fraction = 0.25f;  // of the median rise: a riser standing on the last
+  float min_riser_seen_fraction = 0.1f;   // of the median rise: a riser standing on the last
                                           // tread, its top cut off by the view, still gives a step
   int min_steps = 2;                  // fewer detected steps = no staircase
 

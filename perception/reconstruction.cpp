@@ -10,14 +10,14 @@ namespace stairs {
 namespace {
 
 // A segmented riser whose face lies at axial position s and which spans
-// upwards (above = true) or downwards from height z.
-int riser_at(const PlaneSet& ps, float s, float z, bool above) {
+// upwards (above = true) or downwards from height z by more than min_span_m.
+int riser_at(const PlaneSet& ps, float s, float z, bool above, float min_span_m) {
   constexpr float kTol_m = 0.06f;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
     if (ps.planes[i].kind != PlaneKind::Riser || std::abs(e.s_mean - s) > 2 * kTol_m) continue;
-    if (above ? std::abs(e.z_min - z) < kTol_m && e.z_max > z + kTol_m
-              : std::abs(e.z_max - z) < kTol_m && e.z_min < z - kTol_m)
+    if (above ? std::abs(e.z_min - z) < kTol_m && e.z_max > z + min_span_m
+              : std::abs(e.z_max - z) < kTol_m && e.z_min < z - min_span_m)
       return static_cast<int>(i);
   }
   return -1;
@@ -39,7 +39,7 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
   if (steps.empty()) return;
   const double median = median_rise(steps);
   const Level& base = chain.levels.front();
-  if (const int r = riser_at(ps, base.s_min, base.z, false); r >= 0) {
+  if (const int r = riser_at(ps, base.s_min, base.z, false, 0.06f); r >= 0) {
     Step s;
     s.riser_plane = r;
     s.tread_plane = base.plane;
@@ -50,10 +50,11 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
     steps.insert(steps.begin(), s);
   }
   const Level& top = chain.levels.back();
-  if (const int r = riser_at(ps, top.s_max, top.z, true); r >= 0) {
+  // Its top is cut off by the view: a sliver of it is as good as more.
+  if (const int r = riser_at(ps, top.s_max, top.z, true, static_cast<float>(cfg.min_riser_seen_fraction * median));
+      r >= 0) {
     const PlaneExtent& e = ps.extents[r];
     const double seen = e.z_max - top.z;
-    if (seen < cfg.min_riser_seen_fraction * median) return;  // too little in view to place a nosing
     Step s;
     s.riser_plane = r;
     s.riser_height_m = din_riser_ok(seen, cfg) && seen > median - 0.03 ? seen : median;

@@ -142,5 +142,45 @@ TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
   }
 }
 
+TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
+  // Looking up a flight: floor, two treads, and at the image's top edge 3 cm
+  // of the next riser standing on the last tread (its top out of view).
+  PlaneSet ps;
+  auto add = [&](PlaneKind kind, PlaneExtent e) {
+    Plane p;
+    p.kind = kind;
+    ps.planes.push_back(p);
+    ps.extents.push_back(e);
+  };
+  for (int k = 0; k < 3; ++k) {
+    const float z = -1.0f + 0.18f * k, s0 = k == 0 ? 0.3f : 1.0f + 0.25f * (k - 1);
+    add(PlaneKind::Tread, {s0, 1.0f + 0.25f * k, -0.5f, 0.5f, z, z, 0.5f * (s0 + 1.0f + 0.25f * k), z});
+  }
+  for (int k = 0; k < 2; ++k) {
+    const float s = 1.0f + 0.25f * k, z0 = -1.0f + 0.18f * k;
+    add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.18f, s, z0 + 0.09f});
+  }
+  PlaneExtent sliver{1.5f, 1.5f, -0.5f, 0.5f, -0.64f, -0.61f, 1.5f, -0.625f};
+  sliver.top_in_view = false;
+  add(PlaneKind::Riser, sliver);
+  const PerceptionConfig cfg;
+  const StairChain chain = best_chain(tread_levels(ps, {}, cfg), cfg);
+  ASSERT_EQ(chain.direction, Direction::Up);
+  std::vector<Step> steps = steps_from_chain(ps, chain);
+  ASSERT_EQ(steps.size(), 2u);
+  reconstruct(ps, chain, steps, cfg);
+  ASSERT_EQ(steps.size(), 3u);
+  EXPECT_EQ(steps[2].riser_plane, 5);
+  EXPECT_NEAR(steps[2].nosing_m.x(), 1.5, 1e-4);
+  EXPECT_NEAR(steps[2].nosing_m.z(), -0.64 + 0.18, 1e-3);  // the rise is the chain's median
+  EXPECT_NEAR(*steps[2].riser_height_m, 0.18, 1e-3);
+
+  // Less than min_riser_seen_fraction of a rise in view is no step.
+  ps.extents[5].z_max = ps.extents[5].z_min + 0.5f * cfg.min_riser_seen_fraction * 0.18f;
+  steps = steps_from_chain(ps, chain);
+  reconstruct(ps, chain, steps, cfg);
+  EXPECT_EQ(steps.size(), 2u);
+}
+
 }  // namespace
 }  // namespace stairs
