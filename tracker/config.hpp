@@ -24,6 +24,9 @@ struct TrackerConfig {
   double max_translation_jump_m = 0.12;     // m; ICP correction vs. the motion prior (< half a tread)
   double velocity_window_s = 0.5;           // s; constant velocity from the poses this far back (noise / window)
   double max_prediction_s = 1.5;            // s; longer gaps predict no motion (relocalise instead)
+  double predict_camera_s = 1.0;            // s; an update that registers nothing (no steps in view,
+                                            // a rejected registration) still places the camera by the
+                                            // motion prior this long after the last registration
 
   // --- relocalisation after a gap or loss
   double relocalise_after_s = 0.2;  // s; a gap longer than this triggers a whole-step search

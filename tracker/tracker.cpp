@@ -113,10 +113,25 @@ const StairModel& Tracker::update(const Observation& obs) {
 
   const double since_accept_s = seconds(obs.source_utime - accepted_.back().first);
   const Pose4 prior = predict(obs.source_utime);
+  // Constant velocity carries a flight's slope on across a landing; the
+  // height over the surface beneath, where perception sees it, does not. But
+  // perception's surface beneath is the one at the image's bottom, ahead of
+  // the camera: near a flight's end it may be the next level, so a height a
+  // riser or more off the prior is not taken.
+  auto by_prior = [&](Pose4 pose) {
+    if (!obs.camera.valid || !obs.camera.height_m) return pose;
+    const double z = surface_z_m(map_, pose.t_m.x(), config_) + *obs.camera.height_m;
+    if (std::abs(z - pose.t_m.z()) < 0.5 * typical_riser_m(map_, config_)) pose.t_m.z() = z;
+    return pose;
+  };
+  // Nothing registered: the camera stays on the stair by the motion prior (a
+  // climber needs its pose on every update, e.g. on a landing with no step in
+  // view) while that is fresh; attitude is the observation's own.
   auto not_registered = [&](const std::string& why) -> const StairModel& {
     if (since_accept_s > config_.lost_after_s) model_.state = TrackingState::Lost;
-    model_.status = why;
-    publish(obs, prior, false);
+    const bool predicted = obs.camera.valid && since_accept_s <= config_.predict_camera_s;
+    model_.status = predicted ? why + "; camera from the motion prior" : why;
+    publish(obs, by_prior(prior), predicted);
     return finish();
   };
   if (!obs.camera.valid || obs.steps.empty()) return not_registered("observation without steps");
@@ -134,11 +149,8 @@ const StairModel& Tracker::update(const Observation& obs) {
   // to register against, so the motion prior places it while it is fresh.
   const bool dead_reckoned = reg.within == 0 && since_accept_s <= config_.max_prediction_s;
   if (dead_reckoned) {
-    reg.pose = start_pose;
+    reg.pose = by_prior(start_pose);
     reg.inlier_ratio = 1.0;
-    // Constant velocity carries a flight's slope across the landing; the height
-    // over the surface beneath, where perception sees it, does not.
-    if (obs.camera.height_m) reg.pose.t_m.z() = surface_z_m(map_, reg.pose.t_m.x(), config_) + *obs.camera.height_m;
   }
   model_.registration_rmse_m = reg.rmse_m;
   model_.registration_inlier_ratio = reg.inlier_ratio;
