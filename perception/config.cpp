@@ -32,7 +32,7 @@ PerceptionConfig load_perception_config(const std::string& json_path) {
   if (!j.is_object()) throw std::runtime_error(json_path + ": perception config must be a JSON object");
   PerceptionConfig c;
 #define STAIRS_PERCEPTION_FIELDS(X)                                                                      \
-  X(grid_cell_px) X(normal_radius_cells) X(max_depth_m) X(min_depth_m) X(jump_ratio) X(cell_min_valid_fraction) X(inverse_depth_kink_per_m) X(smooth_normals)   \
+  X(grid_cell_px) X(normal_radius_cells) X(max_depth_m) X(min_depth_m) X(jump_ratio) X(cell_min_valid_fraction) X(cell_valid_fraction_range_m) X(inverse_depth_kink_per_m) X(smooth_normals)   \
   X(grow_angle_deg) X(grow_region_angle_deg) X(grow_distance_m) X(grow_max_distance_m) X(min_plane_px_320) X(max_tilt_from_image_up_deg) X(parallel_deg) X(gravity_prior_max_deg) X(gravity_prior_max_gap_s) X(gravity_min_support_fraction) \
   X(beneath_view_edge_margin_m) X(beneath_view_edge_tolerance) X(beneath_same_level_m) X(edge_jump_min_m) X(edge_jump_ratio) X(edge_gap_cells) X(edge_height_gap_m) X(edge_ransac_threshold_m) X(edge_ransac_iterations) X(edge_min_points) X(edge_max_lines_per_group) X(edge_max_tilt_deg) X(edge_max_axis_deg) \
   X(normal_edge_blur_cells) X(normal_edge_canny_low) X(normal_edge_canny_high) X(normal_edge_min_contour_px) X(normal_edge_hough_theta_deg) X(normal_edge_hough_votes_px) \
@@ -58,7 +58,7 @@ PerceptionConfig load_perception_config(const std::string& json_path) {
       c.normal_edge_blur_cells < 0 || c.normal_edge_canny_low < 0 || c.normal_edge_canny_high < c.normal_edge_canny_low ||
       !(c.normal_edge_hough_theta_deg > 0) || c.normal_edge_side_cells < 1 || !(c.normal_edge_merge_bin_m > 0) ||
       !(c.normal_edge_merge_bin_deg > 0) || c.max_edges < 0 || c.max_edges > 256 ||
-      !(c.cell_min_valid_fraction > 0) || c.cell_min_valid_fraction > 1)
+      !(c.cell_min_valid_fraction > 0) || c.cell_min_valid_fraction > 1 || !(c.cell_valid_fraction_range_m > 0))
     throw std::runtime_error(json_path + ": perception config value out of range");
   return c;
 }

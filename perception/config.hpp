@@ -15,6 +15,7 @@ struct PerceptionConfig {
   float jump_ratio = 0.05f;        // |dz| / z above which two cells are not neighbours (and
                                    // pixels of one cell not on its nearest surface)
   float cell_min_valid_fraction = 0.5f;  // of a cell's pixels on its nearest surface, else no point
+  float cell_valid_fraction_range_m = 1.5f;  // m; beyond, that fraction falls as 1/depth (dropout)
   float inverse_depth_kink_per_m = 0.008f;  // 1/m; |1/z_l + 1/z_r - 2/z_c| above this = a corner or
                                              // jump between (1/z is affine in the image on a plane)
   bool smooth_normals = true;      // 3x3 mean of the normals

@@ -17,15 +17,16 @@ namespace {
 // jump_ratio of its nearest one, back-projected at their mean pixel. Pixels of
 // a farther surface behind a depth edge are left out rather than averaged in
 // (the mean would float between both) or voiding the cell (far treads seen from
-// above are strips a few cells tall, between edges); at range the sensor drops
-// many pixels (a quarter of the cell would keep more far cells at 640x480,
-// but lose the nosing edge under a real Kinect v2 looking steeply down).
+// above are strips a few cells tall, between edges). Half the cell must be on
+// that surface up to cell_valid_fraction_range_m, less beyond (as 1/z): at range
+// the sensor drops many pixels, while near a sparse cell is an edge's flying
+// pixels (on a real Kinect v2 looking steeply down they break up the first riser).
 void cell_means(const DepthImage& frame, const PerceptionConfig& cfg, NormalGrid& g) {
   const Intrinsics& K = frame.K;
   const uint16_t lo = static_cast<uint16_t>(std::clamp(cfg.min_depth_m / frame.depth_scale, 1.0, 65535.0));
   const uint16_t hi = static_cast<uint16_t>(std::clamp(cfg.max_depth_m / frame.depth_scale, 1.0, 65535.0));
-  const uint32_t min_n = std::max<uint32_t>(
-      1, static_cast<uint32_t>(std::ceil(cfg.cell_min_valid_fraction * g.cell_px * g.cell_px)));
+  const float cell_area = static_cast<float>(g.cell_px * g.cell_px);
+  const float range_units = static_cast<float>(cfg.cell_valid_fraction_range_m / frame.depth_scale);
   for (int gy = 0; gy < g.height; ++gy) {
     for (int gx = 0; gx < g.width; ++gx) {
       const int u0 = gx * g.cell_px, v0 = gy * g.cell_px;
@@ -52,7 +53,8 @@ void cell_means(const DepthImage& frame, const PerceptionConfig& cfg, NormalGrid
           }
         }
       }
-      if (n < min_n) continue;
+      const float fraction = cfg.cell_min_valid_fraction * std::min(1.0f, range_units / d_min);
+      if (static_cast<float>(n) < std::max(1.0f, std::ceil(fraction * cell_area))) continue;
       const float z = static_cast<float>(sum * frame.depth_scale / n);
       g.points[i] = back_project(K, static_cast<float>(su) / n, static_cast<float>(sv) / n, z);
       g.has_point[i] = 1;
