@@ -9,13 +9,15 @@ namespace stairs {
 
 namespace {
 
-// A segmented riser whose face lies at axial position s and which spans
-// upwards (above = true) or downwards from height z by more than min_span_m.
-int riser_at(const PlaneSet& ps, float s, float z, bool above, float min_span_m) {
-  constexpr float kTol_m = 0.06f;
+constexpr float kTol_m = 0.06f;
+
+// A segmented riser whose face lies between axial positions s_lo and s_hi and
+// which spans upwards (above = true) or downwards from height z by more than
+// min_span_m.
+int riser_at(const PlaneSet& ps, float s_lo, float s_hi, float z, bool above, float min_span_m) {
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
-    if (ps.planes[i].kind != PlaneKind::Riser || std::abs(e.s_mean - s) > 2 * kTol_m) continue;
+    if (ps.planes[i].kind != PlaneKind::Riser || e.s_mean < s_lo || e.s_mean > s_hi) continue;
     if (above ? std::abs(e.z_min - z) < kTol_m && e.z_max > z + min_span_m
               : std::abs(e.z_max - z) < kTol_m && e.z_min < z - min_span_m)
       return static_cast<int>(i);
@@ -39,7 +41,7 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
   if (steps.empty()) return;
   const double median = median_rise(steps);
   const Level& base = chain.levels.front();
-  if (const int r = riser_at(ps, base.s_min, base.z, false, 0.06f); r >= 0) {
+  if (const int r = riser_at(ps, base.s_min - 2 * kTol_m, base.s_min + 2 * kTol_m, base.z, false, kTol_m); r >= 0) {
     Step s;
     s.riser_plane = r;
     s.tread_plane = base.plane;
@@ -50,8 +52,15 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
     steps.insert(steps.begin(), s);
   }
   const Level& top = chain.levels.back();
+  // The next riser stands at the top level's far end; when that level is a
+  // riser's top (a tread seen edge-on from a low camera) its far end is
+  // unseen: the riser stands a plausible tread beyond.
+  const float s_lo = top.plane >= 0 ? top.s_max - 2 * kTol_m
+                                    : top.s_max + static_cast<float>(cfg.tread_min_m * (1 - cfg.din_tolerance));
+  const float s_hi = top.plane >= 0 ? top.s_max + 2 * kTol_m
+                                    : top.s_max + static_cast<float>(cfg.tread_max_m * (1 + cfg.din_tolerance));
   // Its top is cut off by the view: a sliver of it is as good as more.
-  if (const int r = riser_at(ps, top.s_max, top.z, true, static_cast<float>(cfg.min_riser_seen_fraction * median));
+  if (const int r = riser_at(ps, s_lo, s_hi, top.z, true, static_cast<float>(cfg.min_riser_seen_fraction * median));
       r >= 0) {
     const PlaneExtent& e = ps.extents[r];
     const double seen = e.z_max - top.z;
@@ -66,14 +75,13 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
 }
 
 // Going down, the last level of a staircase (min_steps already) is a step too
-// when a depth jump shows its nosing and it is no floor (deeper than a
-// landing); the riser below it is out of view (the rise is the chain's median).
+// when a depth jump shows its nosing: a tread, or a landing with the next
+// flight below its edge (a floor ends at a wall, not at a drop); the riser
+// below it is out of view (the rise is the chain's median).
 void complete_descending(const PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps,
                          const PerceptionConfig& cfg) {
   const Level& last = chain.levels.back();
-  if (static_cast<int>(steps.size()) < cfg.min_steps || !last.far_edge ||
-      last.s_max - last.s_min >= cfg.landing_min_depth_m)
-    return;
+  if (static_cast<int>(steps.size()) < cfg.min_steps || !last.far_edge) return;
   Step s;
   s.tread_plane = last.plane;
   s.riser_height_m = median_rise(steps);

@@ -52,6 +52,26 @@ TEST(PerceptionGrammar, DescendingChainFromTheLanding) {
   }
 }
 
+TEST(PerceptionReconstruction, AMidLandingEndingInADropIsTheLastStepGoingDown) {
+  // The same flight seen from above, but its last level ends in a depth jump
+  // 1.3 m on: a landing with the next flight below its edge, not the floor.
+  std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), level(-1.17f, 1.6f, 1.78f), level(-1.34f, 1.9f, 2.06f),
+                               level(-1.51f, 2.2f, 3.5f)};
+  levels.back().far_edge = true;
+  const PerceptionConfig cfg;
+  const StairChain ch = best_chain(levels, cfg);
+  ASSERT_EQ(ch.steps(), 3);
+  PlaneSet ps;
+  std::vector<Step> steps = steps_from_chain(ps, ch);
+  reconstruct(ps, ch, steps, cfg);
+  ASSERT_EQ(steps.size(), 4u);
+  EXPECT_TRUE(steps[3].landing);
+  EXPECT_NEAR(steps[3].nosing_m.x(), 3.5, 1e-5);
+  EXPECT_NEAR(steps[3].nosing_m.z(), -1.51, 1e-5);
+  EXPECT_NEAR(*steps[3].tread_depth_m, 3.5 - 2.06, 1e-5);
+  EXPECT_NEAR(*steps[3].riser_height_m, 0.17, 1e-5);  // the chain's median: its riser is out of view
+}
+
 TEST(PerceptionGrammar, NoChainOnImplausibleLevels) {
   const PerceptionConfig c;
   // A table top 0.75 m above the floor.
@@ -133,13 +153,21 @@ TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
   const StairChain chain = best_chain(levels, cfg);
   EXPECT_EQ(chain.direction, Direction::Up);
   EXPECT_EQ(chain.steps(), 3);
-  const std::vector<Step> steps = steps_from_chain(ps, chain);
+  std::vector<Step> steps = steps_from_chain(ps, chain);
   ASSERT_EQ(steps.size(), 3u);
   for (int k = 0; k < 3; ++k) {
     EXPECT_EQ(steps[k].riser_plane, k + 1);
     EXPECT_NEAR(steps[k].nosing_m.x(), 1.0 + 0.25 * k, 1e-4);
     EXPECT_NEAR(*steps[k].riser_height_m, 0.18, 1e-4);
   }
+  // The cut riser stands a tread beyond the last riser's top, on its unseen
+  // tread: the next step, its nosing a median rise above that level.
+  reconstruct(ps, chain, steps, cfg);
+  ASSERT_EQ(steps.size(), 4u);
+  EXPECT_EQ(steps[3].riser_plane, 4);
+  EXPECT_NEAR(steps[3].nosing_m.x(), 1.75, 1e-4);
+  EXPECT_NEAR(steps[3].nosing_m.z(), 0.09 + 0.18, 1e-4);
+  EXPECT_NEAR(*steps[2].tread_depth_m, 0.25, 1e-4);
 }
 
 TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
