@@ -99,7 +99,10 @@ json result_to_json(const RunResult& r) {
       frame["score"] = {{"visible_steps", fs.visible},
                         {"nosing_in_view", fs.nosing_in_view},
                         {"matched", fs.matched},
-                        {"tracked_matched", fs.tracked ? json(*fs.tracked) : json(nullptr)}};
+                        {"tracked_matched", fs.tracked ? json(*fs.tracked) : json(nullptr)},
+                        {"true_pitch_deg", fs.pitch_deg},
+                        {"true_roll_deg", fs.roll_deg},
+                        {"true_height_m", fs.height_m}};
     }
     frames.push_back(std::move(frame));
   }

@@ -216,6 +216,9 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
     const GroundTruthFrame& gt = *f.truth;
     ++s.frames_scored;
     FrameScore& fs = s.frames.back().emplace();
+    fs.pitch_deg = gt.pitch_deg;
+    fs.roll_deg = gt.roll_deg;
+    fs.height_m = gt.height_m;
     const auto matched_real = [](const std::vector<StepMatch>& ms, size_t detected) {
       std::vector<int> out(detected, -1);
       for (const StepMatch& m : ms) out[static_cast<size_t>(m.detected)] = m.real;

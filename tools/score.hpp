@@ -46,6 +46,7 @@ struct FrameScore {
   std::vector<int> nosing_in_view;          // visible ones whose nosing projects into the image
   std::vector<int> matched;                 // real step per detected step, -1 when false
   std::optional<std::vector<int>> tracked;  // the same for the tracked steps
+  double pitch_deg = 0, roll_deg = 0, height_m = 0;  // the true camera pose
 };
 
 struct Score {
