@@ -10,6 +10,14 @@ namespace {
 
 Level level(float z, float s_min, float s_max) { return {-1, z, s_min, s_max, -0.5f, 0.5f}; }
 
+// A plane known only by its kind and stair-aligned extent.
+void add_plane(PlaneSet& ps, PlaneKind kind, const PlaneExtent& e) {
+  Plane p;
+  p.kind = kind;
+  ps.planes.push_back(p);
+  ps.extents.push_back(e);
+}
+
 TEST(PerceptionGrammar, DinBoundsWithTolerance) {
   const PerceptionConfig c;
   EXPECT_TRUE(din_riser_ok(0.17, c));
@@ -127,12 +135,7 @@ TEST(PerceptionSteps, SingleCurbIsNoStaircase) {
 TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
   // A camera level with the flight sees the floor and the risers, not the treads.
   PlaneSet ps;
-  auto add = [&](PlaneKind kind, PlaneExtent e) {
-    Plane p;
-    p.kind = kind;
-    ps.planes.push_back(p);
-    ps.extents.push_back(e);
-  };
+  auto add = [&](PlaneKind kind, const PlaneExtent& e) { add_plane(ps, kind, e); };
   add(PlaneKind::Tread, {0.3f, 1.0f, -0.5f, 0.5f, -0.45f, -0.45f, 0.65f, -0.45f});
   for (int k = 0; k < 3; ++k) {
     const float s = 1.0f + 0.25f * k, z0 = -0.45f + 0.18f * k;
@@ -174,12 +177,7 @@ TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
   // Looking up a flight: floor, two treads, and at the image's top edge 3 cm
   // of the next riser standing on the last tread (its top out of view).
   PlaneSet ps;
-  auto add = [&](PlaneKind kind, PlaneExtent e) {
-    Plane p;
-    p.kind = kind;
-    ps.planes.push_back(p);
-    ps.extents.push_back(e);
-  };
+  auto add = [&](PlaneKind kind, const PlaneExtent& e) { add_plane(ps, kind, e); };
   for (int k = 0; k < 3; ++k) {
     const float z = -1.0f + 0.18f * k, s0 = k == 0 ? 0.3f : 1.0f + 0.25f * (k - 1);
     add(PlaneKind::Tread, {s0, 1.0f + 0.25f * k, -0.5f, 0.5f, z, z, 0.5f * (s0 + 1.0f + 0.25f * k), z});

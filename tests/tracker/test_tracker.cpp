@@ -50,6 +50,16 @@ void expect_accurate(const Walk& r, const StairGeometry& g, const char* name) {
   EXPECT_LE(a.tread_abs_cm, 1.0) << name;
 }
 
+// Moves everything an observation saw by `off` (a registration gone wrong).
+void shift(Observation& obs, const Eigen::Vector3f& off) {
+  for (auto& s : obs.steps) s.nosing_m += off.cast<double>();
+  for (auto& p : obs.planes) {
+    p.centroid += off;
+    for (auto& c : p.corners) c += off;
+    for (auto& q : p.points) q += off;
+  }
+}
+
 const StairGeometry kStair = make_stair(9, 0.17, 0.28, 1.5);
 const StairGeometry kTwoFlights = make_stair(12, 0.17, 0.28, 1.5, 5, 1.2);
 
@@ -202,13 +212,7 @@ TEST(Tracker, RejectsARegistrationThatJumpsAwayFromTheMotionPrior) {
     Observation obs = maker.make(cams[k], static_cast<int64_t>(k) * 33333);
     if (k == 100 && !obs.steps.empty()) {
       // A whole observation 20 cm off: no camera moves that far in 33 ms.
-      const Eigen::Vector3f off(0.2f, 0.0f, 0.0f);
-      for (auto& s : obs.steps) s.nosing_m += off.cast<double>();
-      for (auto& p : obs.planes) {
-        p.centroid += off;
-        for (auto& c : p.corners) c += off;
-        for (auto& q : p.points) q += off;
-      }
+      shift(obs, Eigen::Vector3f(0.2f, 0.0f, 0.0f));
       const int fused = tracker.model().observations_fused;
       const Eigen::Vector3d before = tracker.model().camera_position_m;
       // The camera stays where the motion prior puts it (0.6 m/s, 33 ms on).
@@ -232,13 +236,7 @@ TEST(Tracker, ABadSeedThatNoLaterObservationConfirmsIsReplaced) {
   // The seed is 20 cm off (a poor frame): every later observation disagrees.
   Observation bad = maker.make(cams[20], 20 * 33333);
   ASSERT_GE(bad.steps.size(), 2u);
-  const Eigen::Vector3f off(0.2f, 0.0f, 0.0f);
-  for (auto& st : bad.steps) st.nosing_m += off.cast<double>();
-  for (auto& p : bad.planes) {
-    p.centroid += off;
-    for (auto& c : p.corners) c += off;
-    for (auto& q : p.points) q += off;
-  }
+  shift(bad, Eigen::Vector3f(0.2f, 0.0f, 0.0f));
   EXPECT_EQ(tracker.update(bad).observations_fused, 1);
   // The next one is rejected against that seed and becomes the new seed.
   const StairModel& m = tracker.update(maker.make(cams[21], 21 * 33333));
