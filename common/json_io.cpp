@@ -41,11 +41,22 @@ json to_json(const Intrinsics& K, double depth_scale) {
 }
 
 json step_to_json(const Step& s) {
-  return {{"riser_height_m", optional_to_json(s.riser_height_m)},
-          {"tread_depth_m", optional_to_json(s.tread_depth_m)},
-          {"width_m", s.width_m},
-          {"landing", s.landing},
-          {"nosing_m", {s.nosing_m.x(), s.nosing_m.z()}}};
+  json j = {{"riser_height_m", optional_to_json(s.riser_height_m)},
+            {"tread_depth_m", optional_to_json(s.tread_depth_m)},
+            {"width_m", s.width_m},
+            {"landing", s.landing},
+            {"nosing_m", {s.nosing_m.x(), s.nosing_m.z()}}};
+  // Optional (README "Contract extensions"): what was inferred rather than seen.
+  if (s.inferred) {
+    json names = json::array();
+    for (const auto& [bit, name] : {std::pair<uint8_t, const char*>{kStepRiserInferred, "riser_height_m"},
+                                    {kStepNosingInferred, "nosing_height"},
+                                    {kStepWidthPartial, "width_partial"},
+                                    {kStepTreadPartial, "tread_partial"}})
+      if (s.inferred & bit) names.push_back(name);
+    j["inferred"] = names;
+  }
+  return j;
 }
 
 json to_json(const GroundTruth& gt) {

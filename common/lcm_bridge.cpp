@@ -329,7 +329,10 @@ stair_observation_t to_lcm(const Observation& o, int64_t utime) {
   m.camera = to_lcm(o.camera);
   m.direction = static_cast<int8_t>(o.direction);
   m.num_steps = count16(o.steps, stair_observation_t::MAX_STEPS);
-  for (int i = 0; i < m.num_steps; ++i) m.steps.push_back(to_lcm(o.steps[i]));
+  for (int i = 0; i < m.num_steps; ++i) {
+    m.steps.push_back(to_lcm(o.steps[i]));
+    m.step_inferred.push_back(static_cast<int8_t>(o.steps[i].inferred));
+  }
   m.num_planes = count16(o.planes, stair_observation_t::MAX_PLANES);
   for (int i = 0; i < m.num_planes; ++i) m.planes.push_back(to_lcm(o.planes[i]));
   for (step_t& s : m.steps) {  // indices past the cap would dangle
@@ -390,7 +393,10 @@ bool from_lcm(const stair_observation_t& m, Observation& o, std::string& error) 
   o.source_seq = m.source_seq;
   o.camera = from_lcm(m.camera);
   o.direction = static_cast<Direction>(m.direction);
-  for (const step_t& s : m.steps) o.steps.push_back(from_lcm(s));
+  for (size_t i = 0; i < m.steps.size(); ++i) {
+    o.steps.push_back(from_lcm(m.steps[i]));
+    if (i < m.step_inferred.size()) o.steps.back().inferred = static_cast<uint8_t>(m.step_inferred[i]);
+  }
   for (const plane_t& p : m.planes) o.planes.push_back(from_lcm(p));
   for (const edge_t& em : m.edges) {
     Edge e;
@@ -471,6 +477,7 @@ stair_model_t to_lcm(const StairModel& model, int64_t utime, int64_t source_utim
       if (s.tread_plane >= m.num_planes) s.tread_plane = -1;
     }
   m.status = model.status;
+  m.confirmed = model.confirmed;
   return m;
 }
 
@@ -512,6 +519,7 @@ bool from_lcm(const stair_model_t& m, StairModel& model, std::string& error) {
   out.registration_inlier_ratio = m.registration_inlier_ratio;
   out.update_latency_ms = m.update_latency_ms;
   out.status = m.status;
+  out.confirmed = m.confirmed;
   model = std::move(out);
   return true;
 }

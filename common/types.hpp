@@ -91,7 +91,16 @@ struct Step {
   // Nosing (riser top meets tread front), x forward, y left, z up, m.
   Eigen::Vector3d nosing_m = Eigen::Vector3d::Zero();
   int confirmations = 1;
+  // What of this step was not seen but inferred (an observation's steps only;
+  // kStep* bits): a value flagged here is a prior, not a measurement.
+  uint8_t inferred = 0;
 };
+
+// Step::inferred bits (stair_observation_t.step_inferred).
+constexpr uint8_t kStepRiserInferred = 1;   // riser height not measured: the chain's median rise
+constexpr uint8_t kStepNosingInferred = 2;  // nosing height from the median rise (riser top out of view)
+constexpr uint8_t kStepWidthPartial = 4;    // width is what was seen: the tread is cut by the view
+constexpr uint8_t kStepTreadPartial = 8;    // tread depth is the visible part only (no next nosing)
 
 enum class Direction : int8_t { None = 0, Up = 1, Down = 2 };
 
@@ -133,6 +142,7 @@ struct StairModel {
   double camera_height_m = 0.0;
   int camera_step_index = -1;  // -1 = floor before the first step
   int observations_fused = 0;
+  bool confirmed = false;  // enough observations agree on the same steps (flights are empty until then)
   double registration_rmse_m = -1.0;
   double registration_inlier_ratio = 0.0;
   double update_latency_ms = 0.0;

@@ -42,6 +42,11 @@ PerceptionConfig load_perception_config(const std::string& json_path) {
   X(extent_percentile) X(riser_min_m) X(riser_max_m) X(tread_min_m) X(tread_max_m) X(step_rule_min_m)    \
   X(step_rule_max_m) X(din_tolerance) X(landing_min_depth_m) X(min_step_width_m) X(max_lateral_gap_m) X(min_riser_seen_fraction) X(min_steps)           \
   X(max_sample_points) X(max_other_points) X(max_planes) X(max_edges)
+#define STAIRS_VERIFICATION_FIELDS(X)                                                                         \
+  X(riser_support) X(foot_support) X(widths) X(alignment) X(regularity) X(lateral_samples) X(vertical_samples)  \
+  X(lateral_margin) X(vertical_margin) X(foot_offset_m) X(solid_tolerance_m) X(solid_tolerance_per_m2)          \
+  X(max_see_through) X(min_decided_probes) X(border_margin_px) X(end_offset_m) X(min_width_ratio) X(min_lateral_overlap)        \
+  X(max_riser_yaw_spread_deg) X(rise_tolerance_m) X(run_tolerance_m) X(min_run_m)
   for (const auto& [key, value] : j.items()) {
 #define STAIRS_READ(name)                     \
   if (key == #name) {                         \
@@ -50,9 +55,39 @@ PerceptionConfig load_perception_config(const std::string& json_path) {
   }
     STAIRS_PERCEPTION_FIELDS(STAIRS_READ)
 #undef STAIRS_READ
+    if (key == "verification") {
+      if (!value.is_object()) throw std::runtime_error(json_path + ": key 'verification' must be an object");
+      for (const auto& [vkey, vvalue] : value.items()) {
+#define STAIRS_READ(name)                                                        \
+  if (vkey == #name) {                                                           \
+    read_field(vvalue, json_path, "verification." + vkey, c.verification.name); \
+    continue;                                                                    \
+  }
+        STAIRS_VERIFICATION_FIELDS(STAIRS_READ)
+#undef STAIRS_READ
+        throw std::runtime_error(json_path + ": unknown perception config key 'verification." + vkey + "'");
+      }
+      continue;
+    }
     throw std::runtime_error(json_path + ": unknown perception config key '" + key + "'");
   }
 #undef STAIRS_PERCEPTION_FIELDS
+#undef STAIRS_VERIFICATION_FIELDS
+  const VerificationConfig& v = c.verification;
+  const auto require = [&](bool ok, const char* key, const char* range) {
+    if (!ok) throw std::runtime_error(json_path + ": perception config key 'verification." + key + "' must be " + range);
+  };
+  require(v.lateral_samples >= 1 && v.lateral_samples <= 64, "lateral_samples", "within 1..64");
+  require(v.vertical_samples >= 1 && v.vertical_samples <= 64, "vertical_samples", "within 1..64");
+  require(v.lateral_margin >= 0 && v.lateral_margin < 0.5f, "lateral_margin", "within [0, 0.5)");
+  require(v.vertical_margin >= 0 && v.vertical_margin < 0.5f, "vertical_margin", "within [0, 0.5)");
+  require(v.solid_tolerance_m > 0 && v.solid_tolerance_per_m2 >= 0, "solid_tolerance_m", "> 0 (per_m2 >= 0)");
+  require(v.max_see_through >= 0 && v.max_see_through <= 1, "max_see_through", "within 0..1");
+  require(v.min_decided_probes >= 1, "min_decided_probes", ">= 1");
+  require(v.min_width_ratio >= 0 && v.min_width_ratio <= 1, "min_width_ratio", "within 0..1");
+  require(v.min_lateral_overlap >= 0 && v.min_lateral_overlap <= 1, "min_lateral_overlap", "within 0..1");
+  require(v.max_riser_yaw_spread_deg > 0, "max_riser_yaw_spread_deg", "> 0");
+  require(v.rise_tolerance_m > 0 && v.run_tolerance_m > 0, "rise_tolerance_m", "> 0 (run_tolerance_m too)");
   if (c.grid_cell_px < 1 || c.normal_radius_cells < 1 || c.max_sample_points < 1 ||
       c.max_sample_points > 1024 || c.max_planes < 1 || c.max_planes > 192 || c.min_steps < 1 ||
       c.normal_edge_blur_cells < 0 || c.normal_edge_canny_low < 0 || c.normal_edge_canny_high < c.normal_edge_canny_low ||

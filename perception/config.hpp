@@ -6,6 +6,34 @@
 
 namespace stairs {
 
+// --- verification (perception/verification.hpp): the evidence a real flight leaves
+struct VerificationConfig {
+  // Each check can be switched off (the ablation in BENCHMARKS.md).
+  bool riser_support = true;  // a solid riser under each nosing, no view through beneath it
+  bool foot_support = true;   // the level below reaches the riser's foot (the step stands on it)
+  bool widths = true;         // treads of one flight share one width and overlap laterally
+  bool alignment = true;      // the segmented risers (nosings) are parallel in plan view
+  bool regularity = true;     // measured rises and runs agree within a tolerance
+
+  int lateral_samples = 8;            // samples across a step's width per probed surface
+  int vertical_samples = 4;           // samples up a riser
+  float lateral_margin = 0.15f;       // of the width left out at each side (walls, stringers)
+  float vertical_margin = 0.25f;      // of the rise left out at top and bottom (nosing overhang, flying pixels)
+  float foot_offset_m = 0.06f;        // m; the foot probe lies this far in front of the riser
+  float solid_tolerance_m = 0.03f;    // m; depth within this (+ the next term) of the probe = a surface there
+  float solid_tolerance_per_m2 = 0.01f;  // m per m^2 of depth: sensor noise grows with z^2
+  float max_see_through = 0.3f;       // of the decided probes: more seen beyond the surface refutes it
+  int min_decided_probes = 6;         // fewer decided probes (occluded, no depth, off image) = no verdict
+  float border_margin_px = 8.0f;      // px at 640x480; a tread end this close to the image border is cut
+  float end_offset_m = 0.05f;         // m; a tread's end is open when the view passes on this far beyond it
+  float min_width_ratio = 0.6f;       // narrower / wider tread width when the narrower one is uncut
+  float min_lateral_overlap = 0.5f;   // of the narrower tread's width, consecutive treads overlap
+  float max_riser_yaw_spread_deg = 8.0f;  // deg; segmented risers of one flight are this parallel
+  float rise_tolerance_m = 0.04f;     // m; a measured rise this far from the median is irregular
+  float run_tolerance_m = 0.07f;      // m; a measured run this far from the median is irregular
+  float min_run_m = 0.138f;           // m; a shorter measured run is no tread (DIN's 0.23 m less its tolerance)
+};
+
 struct PerceptionConfig {
   // --- normals: organized grid of cell means, normals by neighbour cross products
   int grid_cell_px = 4;            // px at 640 wide; cell side (scaled, >= 1)
@@ -91,6 +119,9 @@ struct PerceptionConfig {
   float min_riser_seen_fraction = 0.1f;   // of the median rise: a riser standing on the last
                                           // tread, its top cut off by the view, still gives a step
   int min_steps = 2;                  // fewer detected steps = no staircase
+
+  // --- verification: JSON object "verification" with the keys of VerificationConfig
+  VerificationConfig verification;
 
   // --- observation
   int max_sample_points = 1024;  // per tread/riser, spatially even grid subsample

@@ -30,6 +30,10 @@ bool laterally_overlapping(const Level& a, const Level& b, const PerceptionConfi
 // is a's nosing when a is itself a step (its tread depth is then known).
 std::optional<double> successor(const Level& a, const Level& b, Direction dir, std::optional<float> a_nosing,
                                 const PerceptionConfig& c) {
+  // A riser facing the camera stands in front of the level on its top: going
+  // down, risers face away, so such a level is in no descending flight (a
+  // table's legs seen under its top are).
+  if (dir == Direction::Down && (a.riser_top || b.riser_top)) return std::nullopt;
   const float rise = dir == Direction::Up ? b.z - a.z : a.z - b.z;
   if (!din_riser_ok(rise, c) || !laterally_overlapping(a, b, c)) return std::nullopt;
   double dev = deviation(rise, c.riser_min_m, c.riser_max_m);

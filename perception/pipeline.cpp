@@ -8,6 +8,7 @@
 #include "perception/reconstruction.hpp"
 #include "perception/region_growing.hpp"
 #include "perception/steps.hpp"
+#include "perception/verification.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -134,6 +135,13 @@ Observation Pipeline::process(const DepthImage& frame) {
   clock.mark("grammar");
   reconstruct(ps, chain, steps, cfg_);
   clock.mark("reconstruction");
+  std::string refuted;
+  if (static_cast<int>(steps.size()) >= cfg_.min_steps) {
+    const Verdict verdict = verify(grid_, frame.K, R, ps, chain.direction, steps, cfg_.verification);
+    steps.resize(verdict.kept);
+    refuted = verdict.reason;
+  }
+  clock.mark("verification");
   if (static_cast<int>(steps.size()) < cfg_.min_steps) steps.clear();
   obs.camera.height_m = camera_height(ps, steps, frame.K, obs.camera.pitch_deg, cfg_);
   if (!steps.empty()) {
@@ -141,9 +149,9 @@ Observation Pipeline::process(const DepthImage& frame) {
     obs.steps = std::move(steps);
     const double d = ps.axial(obs.steps.front().nosing_m);
     if (d > 0) obs.camera.distance_m = d;
-    obs.status = "ok";
+    obs.status = refuted.empty() ? "ok" : "ok; verification dropped " + refuted;
   } else {
-    obs.status = "no staircase";
+    obs.status = refuted.empty() ? "no staircase" : "no staircase: verification: " + refuted;
   }
   obs.planes = std::move(ps.planes);
   for (const JumpEdge& j : jump_edges) obs.edges.push_back(j.edge);

@@ -175,6 +175,8 @@ PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segment
     const int margin = cfg.normal_radius_cells + 1;
     for (size_t k = 0; k < cells.size() && e.top_in_view; ++k)
       e.top_in_view = zs_all[k] < e.z_max - 0.02f || cells[k] / g.width > margin;
+    for (size_t k = 0; k < cells.size() && e.bottom_in_view; ++k)
+      e.bottom_in_view = zs_all[k] > e.z_min + 0.02f || cells[k] / g.width < g.height - 1 - margin;
     e.s_mean = cy * p.centroid.x() + sy * p.centroid.y();
     e.z_mean = p.centroid.z();
     const bool tread = p.kind == PlaneKind::Tread;

@@ -13,7 +13,8 @@ namespace stairs {
 struct PlaneExtent {
   float s_min = 0, s_max = 0, t_min = 0, t_max = 0, z_min = 0, z_max = 0;
   float s_mean = 0, z_mean = 0;
-  bool top_in_view = true;  // false when the plane's highest cells lie on the grid's top border
+  bool top_in_view = true;     // false when the plane's highest cells lie on the grid's top border
+  bool bottom_in_view = true;  // false when its lowest cells lie on the grid's bottom border
 };
 
 struct PlaneSet {

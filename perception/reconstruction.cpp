@@ -25,6 +25,18 @@ int riser_at(const PlaneSet& ps, float s_lo, float s_hi, float z, bool above, fl
   return -1;
 }
 
+// The horizontal plane at a riser's foot: level with its bottom, reaching it
+// (or passing beside it: a floor wider than the flight).
+int level_at_foot(const PlaneSet& ps, const PlaneExtent& riser) {
+  for (size_t i = 0; i < ps.planes.size(); ++i) {
+    const PlaneExtent& e = ps.extents[i];
+    if (ps.planes[i].kind == PlaneKind::Tread && std::abs(e.z_mean - riser.z_min) < kTol_m &&
+        e.z_mean < riser.z_max - kTol_m && e.s_min < riser.s_mean && e.s_max > riser.s_mean - 2 * kTol_m)
+      return static_cast<int>(i);
+  }
+  return -1;
+}
+
 double median_rise(const std::vector<Step>& steps) {
   std::vector<double> rises;
   for (const Step& s : steps) rises.push_back(*s.riser_height_m);
@@ -45,8 +57,13 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
     Step s;
     s.riser_plane = r;
     s.tread_plane = base.plane;
-    s.riser_height_m = std::max<double>(median, ps.extents[r].z_max - ps.extents[r].z_min);
-    if (!din_riser_ok(*s.riser_height_m, cfg)) s.riser_height_m = median;
+    // Measured from the surface at the riser's foot (too low a rise for the
+    // grammar: the floor under a short first riser), else from the riser itself
+    // where its foot is in view; otherwise the median is a prior, flagged.
+    const PlaneExtent& e = ps.extents[r];
+    const int floor = level_at_foot(ps, e);
+    s.riser_height_m = floor >= 0 ? base.z - ps.extents[floor].z_mean : e.bottom_in_view ? e.z_max - e.z_min : median;
+    if (floor < 0 && !e.bottom_in_view) s.inferred |= kStepRiserInferred;
     s.nosing_m = ps.to_camera(base.s_min, 0.5f * (base.t_min + base.t_max), base.z).cast<double>();
     s.width_m = base.t_max - base.t_min;
     steps.insert(steps.begin(), s);
@@ -64,9 +81,13 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
       r >= 0) {
     const PlaneExtent& e = ps.extents[r];
     const double seen = e.z_max - top.z;
+    // A riser whose top is in view is measured; one that rises beyond DIN's
+    // bounds is no step's (a wall, a cabinet). A cut one's height is the median, flagged.
+    if (e.top_in_view && !din_riser_ok(seen, cfg)) return;
     Step s;
     s.riser_plane = r;
-    s.riser_height_m = din_riser_ok(seen, cfg) && seen > median - 0.03 ? seen : median;
+    s.riser_height_m = e.top_in_view ? seen : median;
+    if (!e.top_in_view) s.inferred |= kStepRiserInferred | kStepNosingInferred;
     s.nosing_m = ps.to_camera(e.s_mean, 0.5f * (e.t_min + e.t_max), top.z + static_cast<float>(*s.riser_height_m))
                      .cast<double>();
     s.width_m = e.t_max - e.t_min;
@@ -85,6 +106,7 @@ void complete_descending(const PlaneSet& ps, const StairChain& chain, std::vecto
   Step s;
   s.tread_plane = last.plane;
   s.riser_height_m = median_rise(steps);
+  s.inferred |= kStepRiserInferred;
   s.nosing_m = ps.to_camera(last.s_max, 0.5f * (last.t_min + last.t_max), last.z).cast<double>();
   s.width_m = last.t_max - last.t_min;
   steps.push_back(s);
@@ -101,6 +123,8 @@ void reconstruct(PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps
   // from its nosing to the next nosing.
   for (size_t k = 0; k < steps.size(); ++k) {
     if (up && k + 1 == steps.size() && steps[k].tread_plane < 0) steps[k].tread_depth_m.reset();
+    // The nearest tread going down and the farthest going up show only their visible part.
+    if ((up ? k + 1 == steps.size() : k == 0) && steps[k].tread_depth_m) steps[k].inferred |= kStepTreadPartial;
     if (up && k + 1 < steps.size()) steps[k].tread_depth_m = ps.axial(steps[k + 1].nosing_m) - ps.axial(steps[k].nosing_m);
     if (!up && k >= 1) steps[k].tread_depth_m = ps.axial(steps[k].nosing_m) - ps.axial(steps[k - 1].nosing_m);
     steps[k].landing = steps[k].tread_depth_m && *steps[k].tread_depth_m > cfg.landing_min_depth_m;

@@ -24,7 +24,7 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
     for (size_t k = 0; k < n_treads && !seen; ++k)
       seen = std::abs(levels[k].z - e.z_max) < kSameLevel_m && levels[k].s_max > e.s_mean - kBehind_m &&
              levels[k].s_min < e.s_mean + kAhead_m;
-    if (!seen) levels.push_back({-1, e.z_max, e.s_mean, e.s_mean, e.t_min, e.t_max});
+    if (!seen) levels.push_back({-1, e.z_max, e.s_mean, e.s_mean, e.t_min, e.t_max, false, true});
   }
   // Likewise far treads seen from above are strips too thin for planes, but
   // their nosings show as depth jumps: the tread ends there.

@@ -12,7 +12,8 @@ namespace stairs {
 struct Level {
   int plane = -1;
   float z = 0, s_min = 0, s_max = 0, t_min = 0, t_max = 0;
-  bool far_edge = false;  // a depth-jump edge ends it (its nosing, seen from above)
+  bool far_edge = false;    // a depth-jump edge ends it (its nosing, seen from above)
+  bool riser_top = false;   // the top of a riser facing the camera (a tread seen edge-on)
 };
 
 // Levels of the tread planes, of the tops of risers and of the depth-jump

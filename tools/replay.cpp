@@ -112,6 +112,7 @@ RunResult replay(const std::string& input, const ReplayOptions& options, const F
     f.camera = obs.camera;
     f.direction = obs.direction;
     f.steps = std::move(obs.steps);
+    f.status = obs.status;
     f.tracked_steps = steps_from_camera(tracker.model());
     f.latency.push_back({"perception", ms_between(t0, t1)});
     f.latency.push_back({"tracker", ms_between(t1, t2)});

@@ -46,7 +46,8 @@ json frame_to_json(const FrameResult& f) {
           {"direction", direction_name(f.direction)},
           {"steps", steps_to_json(f.steps)},
           {"tracked_steps", f.tracked_steps ? steps_to_json(*f.tracked_steps) : json(nullptr)},
-          {"latency_ms", latency}};
+          {"latency_ms", latency},
+          {"status", f.status}};
 }
 
 json model_to_json(const StairModel& m) {

@@ -17,6 +17,7 @@ struct FrameResult {
   CameraPose camera;
   Direction direction = Direction::None;
   std::vector<Step> steps;  // nearest first, gravity-aligned camera frame
+  std::string status;       // perception's status (why no staircase, what verification dropped)
   // The tracker's model steps relative to its camera after this frame (same
   // frame; tracker/model_output.hpp steps_from_camera), absent when no tracker
   // ran; empty while the model has no camera.

@@ -91,7 +91,8 @@ std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& po
       o.tread_far_x_m = far;
       add_lateral_extent(*o.tread, to_model, o.y_min_m, o.y_max_m);
     }
-    o.riser_height_m = s.riser_height_m;
+    // An inferred rise is perception's prior, not a measurement: the model regularises itself.
+    if (!(s.inferred & kStepRiserInferred)) o.riser_height_m = s.riser_height_m;
     out.push_back(o);
   }
   return out;

@@ -37,8 +37,15 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
   out.flights.clear();
   out.planes.clear();
   std::vector<const MapStep*> steps;
-  for (const auto& s : map.steps)
+  int confirmed = 0;
+  for (const auto& s : map.steps) {
+    confirmed += !s.reconstructed && s.confirmations >= c.min_confirmations;
     if (s.reconstructed || s.confirmations >= c.min_confirmations) steps.push_back(&s);
+  }
+  // A stair is published only once enough observations agree on enough of its
+  // steps: one odd frame, or furniture seen once, never makes a model.
+  out.confirmed = confirmed >= c.min_seed_steps;
+  if (!out.confirmed) steps.clear();
   out.camera_valid = camera_valid && !steps.empty();
   out.camera_step_index = -1;
   out.camera_height_m = 0.0;

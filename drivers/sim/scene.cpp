@@ -1,5 +1,7 @@
 #include "drivers/sim/scene.hpp"
 
+#include "drivers/sim/furniture.hpp"
+
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -193,6 +195,7 @@ Walls walls_from_name(const std::string& name) {
 }
 
 Scene make_preset(const std::string& name) {
+  if (is_furniture(name)) return furniture_scene(name, 0);
   auto it = presets().find(name);
   if (it == presets().end()) {
     std::string known;
@@ -205,10 +208,14 @@ Scene make_preset(const std::string& name) {
 std::vector<std::string> preset_names() {
   std::vector<std::string> out;
   for (const auto& [name, p] : presets()) out.push_back(name);
+  for (const std::string& f : furniture_families()) out.push_back(f);
   return out;
 }
 
-std::string preset_summary(const std::string& name) { return presets().at(name).summary; }
+std::string preset_summary(const std::string& name) {
+  if (is_furniture(name)) return "no stair: " + name + " furniture walked from 3.5 to 0.8 m (sizes drawn from --seed)";
+  return presets().at(name).summary;
+}
 
 std::vector<StepGeometry> step_geometry(const Scene& s) {
   std::vector<StepGeometry> out;
@@ -331,6 +338,7 @@ Scene scene_from_json(const json& j, const std::string& what) {
   s.ramp_length_m = positive(j, "ramp_length_m", what, s.ramp_length_m);
   s.ramp_height_m = positive(j, "ramp_height_m", what, s.ramp_height_m);
   s.ramp_landing_m = positive(j, "ramp_landing_m", what, s.ramp_landing_m);
+  s.walk_end_m = num(j, "walk_end_m", what, s.walk_end_m);
   if (s.nosing_m < 0.0 || s.nosing_m > 0.1) fail(what, "'nosing_m' must be within 0..0.1");
   if (j.contains("back_wall")) {
     if (!j["back_wall"].is_boolean()) fail(what, "'back_wall' is not true/false");
@@ -409,6 +417,7 @@ json scene_to_json(const Scene& s) {
           {"ramp_length_m", s.ramp_length_m},
           {"ramp_height_m", s.ramp_height_m},
           {"ramp_landing_m", s.ramp_landing_m},
+          {"walk_end_m", s.walk_end_m},
           {"boxes", boxes},
           {"cylinders", cyls}};
 }

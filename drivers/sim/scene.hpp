@@ -62,12 +62,14 @@ struct Scene {
   double ramp_length_m = 3.0;
   double ramp_height_m = 0.3;
   double ramp_landing_m = 2.0;
+  double walk_end_m = 0.0;         // FlatRoom: > 0 = the walk along x stops here (furniture beyond)
   std::vector<Box> boxes;          // clutter
   std::vector<Cylinder> cylinders; // clutter, handrails
 };
 
 // Presets by name: straight_up, straight_down, irregular, nosing, open_sides,
-// wall_left, two_flights, cluttered, flat_room, ramp, curb (see preset_names()).
+// wall_left, two_flights, cluttered, flat_room, ramp, curb, and the furniture
+// families of furniture.hpp at their nominal sizes (see preset_names()).
 Scene make_preset(const std::string& name);  // throws std::invalid_argument naming the preset
 std::vector<std::string> preset_names();
 std::string preset_summary(const std::string& name);

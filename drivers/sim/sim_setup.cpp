@@ -2,6 +2,7 @@
 
 #include "common/cloud.hpp"
 #include "common/json_io.hpp"
+#include "drivers/sim/furniture.hpp"
 
 #include <stdexcept>
 
@@ -55,7 +56,7 @@ void add_setup_options(Options& o) {
       .add("resolution", "WxH", "depth resolution; intrinsics scaled from Kinect v1 640x480 fx=fy=525", "640x480")
       .add("perfect", "", "noiseless depth: no sensor effects except the 0.5-4.5 m range");
   for (const auto& s : kSensorSwitches) o.add(s[0], "", std::string("switch off the ") + s[1]);
-  o.add("seed", "N", "random seed: the same seed gives the same bytes", "1");
+  o.add("seed", "N", "random seed: the same seed gives the same bytes (and a furniture preset's sizes)", "1");
 }
 
 SimSetup setup_from_options(const Options& o) {
@@ -127,6 +128,8 @@ SimSetup setup_from_options(const Options& o) {
   const double seed = o.get_double("seed");
   if (seed < 0 || seed != std::floor(seed)) throw std::runtime_error("--seed must be a non-negative integer");
   s.seed = static_cast<uint64_t>(seed);
+  // A furniture family's sizes are drawn from the seed too (one seed, one room).
+  if (!o.has("scenario") && is_furniture(o.get("preset"))) s.scene = furniture_scene(o.get("preset"), s.seed);
   return s;
 }
 

@@ -93,7 +93,9 @@ std::string carrier_name(Carrier c) { return c == Carrier::Robot ? "robot" : "ha
 Trajectory::Trajectory(const Scene& scene, const TrajectoryConfig& c) : scene_(scene), config_(c) {
   if (!(c.speed_mps > 0.0) || !(c.fps > 0.0)) throw std::invalid_argument("trajectory: speed and fps must be positive");
   const Extent e = extent(scene);
-  const double lo = scene_start_x_m(scene) + 0.3, hi = scene_end_x_m(scene) - 0.4;
+  const double lo = scene_start_x_m(scene) + 0.3;
+  const double hi = scene.walk_end_m > 0 ? std::min(scene.walk_end_m, scene_end_x_m(scene) - 0.4)
+                                         : scene_end_x_m(scene) - 0.4;
   const bool stairs = !step_geometry(scene).empty();
   Situation sit = stairs ? c.situation : Situation::Full;
   if (!c.descending) {
