@@ -44,9 +44,10 @@ PerceptionConfig load_perception_config(const std::string& json_path) {
   X(max_sample_points) X(max_other_points) X(max_planes) X(max_edges)
 #define STAIRS_VERIFICATION_FIELDS(X)                                                                         \
   X(riser_support) X(foot_support) X(widths) X(alignment) X(regularity) X(lateral_samples) X(vertical_samples)  \
-  X(lateral_margin) X(vertical_margin) X(foot_offset_m) X(solid_tolerance_m) X(solid_tolerance_per_m2)          \
+  X(lateral_margin) X(vertical_margin) X(max_nosing_overhang_m) X(min_probe_elevation_deg) X(foot_offset_m) X(solid_tolerance_m) X(solid_tolerance_per_m2)          \
   X(max_see_through) X(min_decided_probes) X(border_margin_px) X(end_offset_m) X(min_width_ratio) X(min_lateral_overlap)        \
-  X(max_riser_yaw_spread_deg) X(rise_tolerance_m) X(run_tolerance_m) X(min_run_m)
+  X(max_riser_yaw_spread_deg) X(rise_tolerance_m) X(run_tolerance_m) X(min_run_m) \
+  X(rise_outlier_m) X(run_outlier_m) X(regular_steps_for_an_outlier)
   for (const auto& [key, value] : j.items()) {
 #define STAIRS_READ(name)                     \
   if (key == #name) {                         \
@@ -88,6 +89,9 @@ PerceptionConfig load_perception_config(const std::string& json_path) {
   require(v.min_lateral_overlap >= 0 && v.min_lateral_overlap <= 1, "min_lateral_overlap", "within 0..1");
   require(v.max_riser_yaw_spread_deg > 0, "max_riser_yaw_spread_deg", "> 0");
   require(v.rise_tolerance_m > 0 && v.run_tolerance_m > 0, "rise_tolerance_m", "> 0 (run_tolerance_m too)");
+  require(v.rise_outlier_m >= v.rise_tolerance_m && v.run_outlier_m >= v.run_tolerance_m, "rise_outlier_m",
+          ">= rise_tolerance_m (run_outlier_m >= run_tolerance_m)");
+  require(v.regular_steps_for_an_outlier >= 2, "regular_steps_for_an_outlier", ">= 2");
   if (c.grid_cell_px < 1 || c.normal_radius_cells < 1 || c.max_sample_points < 1 ||
       c.max_sample_points > 1024 || c.max_planes < 1 || c.max_planes > 192 || c.min_steps < 1 ||
       c.normal_edge_blur_cells < 0 || c.normal_edge_canny_low < 0 || c.normal_edge_canny_high < c.normal_edge_canny_low ||

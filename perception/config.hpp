@@ -11,7 +11,7 @@ struct VerificationConfig {
   // Each check can be switched off (the ablation in BENCHMARKS.md).
   bool riser_support = true;  // a solid riser under each nosing, no view through beneath it
   bool foot_support = true;   // the level below reaches the riser's foot (the step stands on it)
-  bool widths = true;         // treads of one flight share one width and overlap laterally
+  bool widths = true;         // each tread spans its width; treads share one width and overlap laterally
   bool alignment = true;      // the segmented risers (nosings) are parallel in plan view
   bool regularity = true;     // measured rises and runs agree within a tolerance
 
@@ -19,9 +19,12 @@ struct VerificationConfig {
   int vertical_samples = 4;           // samples up a riser
   float lateral_margin = 0.15f;       // of the width left out at each side (walls, stringers)
   float vertical_margin = 0.25f;      // of the rise left out at top and bottom (nosing overhang, flying pixels)
+  float max_nosing_overhang_m = 0.05f;  // m; a riser may stand this far behind its nosing (DIN: 2-5 cm)
+  float min_probe_elevation_deg = 10.0f;  // deg; a level seen flatter than this decides no probe on it
   float foot_offset_m = 0.06f;        // m; the foot probe lies this far in front of the riser
   float solid_tolerance_m = 0.03f;    // m; depth within this (+ the next term) of the probe = a surface there
-  float solid_tolerance_per_m2 = 0.01f;  // m per m^2 of depth: sensor noise grows with z^2
+  float solid_tolerance_per_m2 = 0.005f;  // m per m^2 of depth: sensor noise grows with z^2 (3 sigma of a
+                                          // Kinect v1 cell mean at 4 m)
   float max_see_through = 0.3f;       // of the decided probes: more seen beyond the surface refutes it
   int min_decided_probes = 6;         // fewer decided probes (occluded, no depth, off image) = no verdict
   float border_margin_px = 8.0f;      // px at 640x480; a tread end this close to the image border is cut
@@ -29,8 +32,12 @@ struct VerificationConfig {
   float min_width_ratio = 0.6f;       // narrower / wider tread width when the narrower one is uncut
   float min_lateral_overlap = 0.5f;   // of the narrower tread's width, consecutive treads overlap
   float max_riser_yaw_spread_deg = 8.0f;  // deg; segmented risers of one flight are this parallel
-  float rise_tolerance_m = 0.04f;     // m; a measured rise this far from the median is irregular
+  float rise_tolerance_m = 0.05f;     // m; a measured rise this far from the median is irregular (old
+                                      // flights' construction tolerance plus noise at range)
   float run_tolerance_m = 0.07f;      // m; a measured run this far from the median is irregular
+  float rise_outlier_m = 0.08f;       // m; one rise may deviate this much when enough others agree
+  float run_outlier_m = 0.12f;        // m; likewise one run
+  int regular_steps_for_an_outlier = 3;  // measured rises (runs) within tolerance that allow one outlier
   float min_run_m = 0.138f;           // m; a shorter measured run is no tread (DIN's 0.23 m less its tolerance)
 };
 

@@ -137,7 +137,8 @@ Observation Pipeline::process(const DepthImage& frame) {
   clock.mark("reconstruction");
   std::string refuted;
   if (static_cast<int>(steps.size()) >= cfg_.min_steps) {
-    const Verdict verdict = verify(grid_, frame.K, R, ps, chain.direction, steps, cfg_.verification);
+    const Verdict verdict = verify(grid_, frame.K, R, ps, chain.direction, steps, cfg_.verification,
+                                   cfg_.riser_max_m * (1 + cfg_.din_tolerance));
     steps.resize(verdict.kept);
     refuted = verdict.reason;
   }

@@ -17,13 +17,16 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   // tread's front ("treads between risers", thesis 4.5).
   const size_t n_treads = levels.size();
   constexpr float kSameLevel_m = 0.04f, kBehind_m = 0.1f, kAhead_m = 0.4f;
+  // A tread less than the lowest plausible rise above a riser's top is that
+  // riser's own: a nosing overhang hides the riser's top under its slab.
+  const float min_rise_m = cfg.riser_min_m * (1 - cfg.din_tolerance);
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
     if (ps.planes[i].kind != PlaneKind::Riser || !e.top_in_view || e.t_max - e.t_min < cfg.min_step_width_m) continue;
     bool seen = false;
     for (size_t k = 0; k < n_treads && !seen; ++k)
-      seen = std::abs(levels[k].z - e.z_max) < kSameLevel_m && levels[k].s_max > e.s_mean - kBehind_m &&
-             levels[k].s_min < e.s_mean + kAhead_m;
+      seen = levels[k].z > e.z_max - kSameLevel_m && levels[k].z < e.z_max + min_rise_m &&
+             levels[k].s_max > e.s_mean - kBehind_m && levels[k].s_min < e.s_mean + kAhead_m;
     if (!seen) levels.push_back({-1, e.z_max, e.s_mean, e.s_mean, e.t_min, e.t_max, false, true});
   }
   // Likewise far treads seen from above are strips too thin for planes, but

@@ -93,11 +93,41 @@ Tally riser_probes(const Prober& pr, const PlaneSet& ps, const StepFrame& f, con
   Tally t;
   if (f.s <= 0 || f.rise <= 0) return t;
   const float z0 = f.z - f.rise + c.vertical_margin * f.rise, span = (1 - 2 * c.vertical_margin) * f.rise;
+  // The face may stand up to a nosing overhang behind the nosing: along the
+  // ray that is as far as the probe's depth times (s + overhang) / s.
+  const float behind = (f.s + c.max_nosing_overhang_m) / f.s;
   for (float lat : lateral_positions(f, c))
     for (int j = 0; j < c.vertical_samples; ++j) {
       const float z = z0 + span * (c.vertical_samples == 1 ? 0.5f : j / static_cast<float>(c.vertical_samples - 1));
-      t.add(pr.at(ps.to_camera(f.s, lat, z)));
+      const Eigen::Vector3f p = ps.to_camera(f.s, lat, z);
+      t.add(pr.at(p, pr.depth(p) * behind));
     }
+  return t;
+}
+
+// The level continued past its far edge (going down): a drop shows beyond.
+Tally drop_probes(const Prober& pr, const PlaneSet& ps, const StepFrame& f, const VerificationConfig& c) {
+  Tally t;
+  if (f.z >= 0) return t;
+  for (float lat : lateral_positions(f, c)) t.add(pr.at(ps.to_camera(f.s + c.foot_offset_m, lat, f.z)));
+  return t;
+}
+
+// A level seen this steeply from the camera (at s ahead, z below) decides a
+// probe: at grazing incidence a centimetre of height error moves the ray's
+// hit along the surface by more than the depth tolerance.
+bool steep_enough(float s, float z, const VerificationConfig& c) {
+  return z < 0 && -z >= s * std::tan(c.min_probe_elevation_deg * static_cast<float>(M_PI) / 180.0f);
+}
+
+// The tread is there across the width claimed for it: seen from above, the
+// view beyond it means a gap (two arm rests of a sofa are no one tread).
+Tally tread_probes(const Prober& pr, const PlaneSet& ps, const StepFrame& f, bool up, float tread_m,
+                   const VerificationConfig& c) {
+  Tally t;
+  const float s = up ? f.s + 0.5f * tread_m : f.s - 0.5f * tread_m;
+  if (tread_m <= 0 || !steep_enough(s, f.z, c)) return t;
+  for (float lat : lateral_positions(f, c)) t.add(pr.at(ps.to_camera(s, lat, f.z)));
   return t;
 }
 
@@ -115,7 +145,7 @@ Tally foot_probes(const Prober& pr, const PlaneSet& ps, const StepFrame& f, bool
     s = f.s * z_lo / f.z + c.foot_offset_m;  // the ray over the nosing meets the lower level there
     if (s > next_s - c.foot_offset_m) return t;
   }
-  if (s <= 0) return t;
+  if (s <= 0 || !steep_enough(s, z_lo, c)) return t;
   // Going up the ray over the foot may meet this step's riser behind it.
   const float to_riser = f.s / s;
   const bool riser_behind = up && z_lo * to_riser <= f.z;
@@ -144,9 +174,32 @@ bool both_ends_open(const Prober& pr, const PlaneSet& ps, const StepFrame& f, bo
   return true;
 }
 
+// The median; of an even count the mean of the middle two (two rises that
+// disagree are equally far from it).
 double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
+  const size_t h = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + h, v.end());
+  if (v.size() % 2) return v[h];
+  return 0.5 * (v[h] + *std::max_element(v.begin(), v.begin() + h));
+}
+
+// Values farther than `tolerance` from their median fail, except one within
+// `outlier` when at least `regular_needed` others agree: one odd step in an
+// otherwise regular flight is a building's, two levels that disagree are no flight.
+template <class Fail>
+void irregular(const std::vector<std::pair<size_t, double>>& values, double tolerance, double outlier, int regular_needed,
+               const char* what, const Fail& fail) {
+  if (values.empty()) return;
+  std::vector<double> v;
+  for (const auto& kv : values) v.push_back(kv.second);
+  const double m = median(v);
+  std::vector<std::pair<size_t, double>> off;
+  for (const auto& [k, x] : values)
+    if (std::abs(x - m) > tolerance) off.emplace_back(k, x - m);
+  const int regular = static_cast<int>(values.size() - off.size());
+  if (off.size() == 1 && regular >= regular_needed && std::abs(off[0].second) <= outlier) return;
+  const std::string why = std::string(what) + " irregular vs. the median (m)";
+  for (const auto& [k, d] : off) fail(k, why.c_str(), d);
 }
 
 float yaw_of(const Plane& p) { return std::atan2(-p.normal.y(), -p.normal.x()); }
@@ -154,7 +207,7 @@ float yaw_of(const Plane& p) { return std::atan2(-p.normal.y(), -p.normal.x()); 
 }  // namespace
 
 Verdict verify(const NormalGrid& grid, const Intrinsics& K, const Eigen::Matrix3f& gravity, const PlaneSet& ps,
-               Direction direction, std::vector<Step>& steps, const VerificationConfig& c) {
+               Direction direction, std::vector<Step>& steps, const VerificationConfig& c, float max_rise_m) {
   Verdict v;
   v.kept = steps.size();
   if (steps.empty()) return v;
@@ -184,10 +237,21 @@ Verdict verify(const NormalGrid& grid, const Intrinsics& K, const Eigen::Matrix3
       const Tally t = riser_probes(pr, ps, f, c);
       if (t.refuted(c)) fail(k, "seen through beneath the nosing: no riser", t.through / double(t.solid + t.through));
     }
+    if (c.foot_support && !up && !f.rise_measured) {
+      // Going down, a level whose riser below is unseen is a step only where
+      // the view drops beyond its edge (no floor running on past a depth jump).
+      const Tally t = drop_probes(pr, ps, f, c);
+      if (t.solid + t.through < c.min_decided_probes || t.through * 2 < t.solid + t.through)
+        fail(k, "no drop seen beyond the edge", t.through / std::max(1.0, double(t.solid + t.through)));
+    }
     if (c.foot_support) {
       const float next_s = k + 1 < steps.size() ? frames[k + 1].s : 1e9f;
       const Tally t = foot_probes(pr, ps, f, up, next_s, c);
       if (t.refuted(c)) fail(k, "the level below does not reach the riser", t.through / double(t.solid + t.through));
+    }
+    if (c.widths) {
+      const Tally t = tread_probes(pr, ps, f, up, static_cast<float>(tread_m), c);
+      if (t.refuted(c)) fail(k, "seen through the tread across its width", t.through / double(t.solid + t.through));
     }
     if (c.widths && k > 0) {
       const StepFrame& a = frames[k - 1];
@@ -214,22 +278,20 @@ Verdict verify(const NormalGrid& grid, const Intrinsics& K, const Eigen::Matrix3
     }
   }
   if (c.regularity) {
-    std::vector<double> rises, runs;
-    for (const Step& st : steps) {
-      if (st.riser_height_m && !(st.inferred & kStepRiserInferred)) rises.push_back(*st.riser_height_m);
-      if (st.tread_depth_m && !st.landing && !(st.inferred & kStepTreadPartial)) runs.push_back(*st.tread_depth_m);
-    }
-    const double mr = rises.empty() ? 0 : median(rises), mt = runs.empty() ? 0 : median(runs);
+    std::vector<std::pair<size_t, double>> rises, runs;  // (step, measured value)
     for (size_t k = 0; k < steps.size(); ++k) {
       const Step& st = steps[k];
-      if (!rises.empty() && st.riser_height_m && !(st.inferred & kStepRiserInferred) &&
-          std::abs(*st.riser_height_m - mr) > c.rise_tolerance_m)
-        fail(k, "rise irregular vs. the median (m)", *st.riser_height_m - mr);
-      const bool run_measured = st.tread_depth_m && !st.landing && !(st.inferred & kStepTreadPartial);
-      if (run_measured && *st.tread_depth_m < c.min_run_m) fail(k, "run too short to stand on (m)", *st.tread_depth_m);
-      if (runs.size() >= 2 && run_measured && std::abs(*st.tread_depth_m - mt) > c.run_tolerance_m)
-        fail(k, "run irregular vs. the median (m)", *st.tread_depth_m - mt);
+      if (st.riser_height_m && !(st.inferred & kStepRiserInferred)) {
+        if (*st.riser_height_m > max_rise_m) fail(k, "rise too high to climb (m)", *st.riser_height_m);
+        rises.emplace_back(k, *st.riser_height_m);
+      }
+      if (st.tread_depth_m && !st.landing && !(st.inferred & kStepTreadPartial)) {
+        if (*st.tread_depth_m < c.min_run_m) fail(k, "run too short to stand on (m)", *st.tread_depth_m);
+        runs.emplace_back(k, *st.tread_depth_m);
+      }
     }
+    irregular(rises, c.rise_tolerance_m, c.rise_outlier_m, c.regular_steps_for_an_outlier, "rise", fail);
+    if (runs.size() >= 2) irregular(runs, c.run_tolerance_m, c.run_outlier_m, c.regular_steps_for_an_outlier, "run", fail);
   }
   return v;
 }

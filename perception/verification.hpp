@@ -27,8 +27,10 @@ struct Verdict {
 // Probes the grid (optical frame; `gravity` = optical -> gravity-aligned) for
 // each step's evidence, nearest first; a step that fails a check is dropped
 // with every step beyond it. Widths and nosing lines are in the stair-aligned
-// frame of `planes`. Sets kStepWidthPartial on steps cut by the image border.
+// frame of `planes`. Sets kStepWidthPartial on steps whose width is a lower
+// bound. `max_rise_m`: DIN's highest rise with its tolerance (the grammar's),
+// above which a measured rise is no step.
 Verdict verify(const NormalGrid& grid, const Intrinsics& K, const Eigen::Matrix3f& gravity, const PlaneSet& planes,
-               Direction direction, std::vector<Step>& steps, const VerificationConfig& cfg);
+               Direction direction, std::vector<Step>& steps, const VerificationConfig& cfg, float max_rise_m);
 
 }  // namespace stairs

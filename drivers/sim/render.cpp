@@ -18,6 +18,7 @@ Renderer::Renderer(const Scene& scene, const Intrinsics& K, const SensorModel& s
   const int margin = static_cast<int>(std::ceil(K.fx * sensor.projector_offset_m / sensor.min_range_m)) + 2;
   projector_K_.width = K.width + margin;
   projector_K_.cx = K.cx + margin;
+  for (const Face& f : geometry_.faces) dark_.push_back(scene.dark_treads && f.part == FacePart::Tread);
 }
 
 int Renderer::visible_min_pixels() const {
@@ -48,9 +49,23 @@ DepthImage Renderer::render(const Eigen::Isometry3d& T, int64_t utime, int32_t s
     apply_projector_shadow(m, K_, projector_K_, camera_zb_, projector_zb_, depth_m_);
   }
   if (on(m.grazing_dropout)) apply_grazing_dropout(m, K_, geometry_, T, camera_zb_, rng, depth_m_);
-  if (on(m.lateral_noise)) apply_lateral_noise(m, m.lateral_sigma_px * res_scale, rng, W, H, depth_m_, scratch_m_);
-  if (on(m.axial_noise) || on(m.quantisation))
-    apply_axial_noise(m, on(m.axial_noise), on(m.quantisation), rng, depth_m_);
+  if (!m.perfect && scene_.dark_treads) apply_dark_dropout(m, dark_, camera_zb_, rng, depth_m_);
+  switch (m.perfect ? SensorKind::KinectV1 : m.kind) {
+    case SensorKind::KinectV1:
+      if (on(m.lateral_noise)) apply_lateral_noise(m, m.lateral_sigma_px * res_scale, rng, W, H, depth_m_, scratch_m_);
+      if (on(m.axial_noise) || on(m.quantisation))
+        apply_axial_noise(m, on(m.axial_noise), on(m.quantisation), rng, depth_m_);
+      break;
+    case SensorKind::KinectV2:
+      if (m.multipath) apply_multipath(m, K_, geometry_, T, camera_zb_, depth_m_);
+      if (m.lateral_noise) apply_flying_pixels(m, rng, W, H, depth_m_, scratch_m_);
+      if (m.axial_noise) apply_tof_noise(m, rng, depth_m_);
+      break;
+    case SensorKind::StereoD4xx:
+      if (m.lateral_noise) apply_edge_holes(m, rng, W, H, depth_m_);
+      if (m.axial_noise) apply_stereo_noise(m, K_.fx, rng, depth_m_);
+      break;
+  }
   if (on(m.holes)) apply_holes(m, res_scale, rng, W, H, depth_m_);
 
   DepthImage img;

@@ -44,6 +44,7 @@ class Renderer {
   Intrinsics K_;
   Intrinsics projector_K_;
   SensorModel sensor_;
+  std::vector<uint8_t> dark_;  // per face: absorbs the IR (Scene::dark_treads)
   uint64_t seed_;
   ZBuffer camera_zb_, projector_zb_;
   Eigen::Isometry3d last_pose_ = Eigen::Isometry3d::Identity();  // of camera_zb_

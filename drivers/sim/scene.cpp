@@ -104,6 +104,28 @@ const std::map<std::string, Preset>& presets() {
                        {0.25, 0.28, 0.23, 0.26, 0.29, 0.24, 0.27, 3.0}};
           return stair("irregular", {f});
         }}},
+      {"steep_nosing",
+       {"8 steep steps 0.20/0.24 m with a 3 cm nosing overhang, a wall on the left only, 3 m landing",
+        [] {
+          Scene s = stair("steep_nosing", {uniform_flight(8, 0.20, 0.24, 3.0)});
+          s.nosing_m = 0.03;
+          s.walls = Walls::Left;
+          return s;
+        }}},
+      {"dark_treads",
+       {"straight_up geometry with dark treads: half their pixels read nothing (any sensor)",
+        [] {
+          Scene s = stair("dark_treads", {uniform_flight(10, 0.18, 0.25, 3.0)});
+          s.dark_treads = true;
+          return s;
+        }}},
+      {"irregular_step",
+       {"10 steps 0.17/0.28 m but the 5th rises 0.21 m (its tread 0.28 m), 3 m landing",
+        [] {
+          FlightSpec f = uniform_flight(10, 0.17, 0.28, 3.0);
+          f.riser_m[4] = 0.21;
+          return stair("irregular_step", {f});
+        }}},
       {"nosing",
        {"10 steps 0.17/0.28 m with a 3 cm nosing overhang, 3 m landing",
         [] {
@@ -339,6 +361,10 @@ Scene scene_from_json(const json& j, const std::string& what) {
   s.ramp_height_m = positive(j, "ramp_height_m", what, s.ramp_height_m);
   s.ramp_landing_m = positive(j, "ramp_landing_m", what, s.ramp_landing_m);
   s.walk_end_m = num(j, "walk_end_m", what, s.walk_end_m);
+  if (j.contains("dark_treads")) {
+    if (!j["dark_treads"].is_boolean()) fail(what, "'dark_treads' is not true/false");
+    s.dark_treads = j["dark_treads"].get<bool>();
+  }
   if (s.nosing_m < 0.0 || s.nosing_m > 0.1) fail(what, "'nosing_m' must be within 0..0.1");
   if (j.contains("back_wall")) {
     if (!j["back_wall"].is_boolean()) fail(what, "'back_wall' is not true/false");
@@ -418,6 +444,7 @@ json scene_to_json(const Scene& s) {
           {"ramp_height_m", s.ramp_height_m},
           {"ramp_landing_m", s.ramp_landing_m},
           {"walk_end_m", s.walk_end_m},
+          {"dark_treads", s.dark_treads},
           {"boxes", boxes},
           {"cylinders", cyls}};
 }

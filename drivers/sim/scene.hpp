@@ -62,6 +62,7 @@ struct Scene {
   double ramp_length_m = 3.0;
   double ramp_height_m = 0.3;
   double ramp_landing_m = 2.0;
+  bool dark_treads = false;        // treads absorb the IR: SensorModel::dark_dropout of their pixels read nothing
   double walk_end_m = 0.0;         // FlatRoom: > 0 = the walk along x stops here (furniture beyond)
   std::vector<Box> boxes;          // clutter
   std::vector<Cylinder> cylinders; // clutter, handrails

@@ -5,12 +5,20 @@
 #include "drivers/sim/raster.hpp"
 #include "drivers/sim/rng.hpp"
 
+#include <string>
 #include <vector>
 
 namespace stairs::sim {
 
-// Kinect v1 structured-light depth. Defaults are the figures.
+// Which sensor the effects imitate (sensor_preset): Kinect v1 structured
+// light (disparity noise, projector shadow), Kinect v2 time of flight (flying
+// pixels at depth edges, multipath in concave corners, metric noise), or a
+// RealSense D4xx active stereo pair (noise growing with z^2, holes at edges).
+enum class SensorKind { KinectV1, KinectV2, StereoD4xx };
+
+// Depth sensor effects. Defaults are Kinect v1's (the figures).
 struct SensorModel {
+  SensorKind kind = SensorKind::KinectV1;
   bool perfect = false;  // noiseless depth: every effect below off except the range limits
 
   double min_range_m = 0.5;  // z outside [min, max] reads 0
@@ -30,13 +38,30 @@ struct SensorModel {
   double focal_px = 580.0;       // of the IR camera, for disparity (independent of the output resolution)
   double subpixel = 8.0;         // disparity steps per pixel
 
-  bool lateral_noise = true;         // depth edges wander across pixels
+  bool lateral_noise = true;         // edge effects: v1 edges wander across pixels, v2 flying pixels, D4xx holes
   double lateral_sigma_px = 0.6;     // at 640x480; scaled with the resolution
   double edge_jump_ratio = 0.03;     // a neighbour differing by more than this fraction of z is an edge
 
   bool grazing_dropout = true;  // no return at grazing incidence
   double grazing_start_deg = 70.0;  // dropout probability rises linearly from 0 here
   double grazing_full_deg = 88.0;   // ... to 1 here
+
+  // Kinect v2 (time of flight)
+  double tof_sigma_a_m = 0.0015;      // sigma(z) = a + b z, metric (no disparity)
+  double tof_sigma_b = 0.0012;        // per m
+  double flying_fraction = 0.5;       // of the edge pixels, read between the two surfaces (lateral_noise)
+  bool multipath = true;              // light bounced in a concave corner lengthens the path
+  double multipath_bias_m = 0.015;    // added range at the corner itself
+  double multipath_range_m = 0.08;    // falling linearly to 0 this far from the corner
+
+  // RealSense D4xx (active stereo): disparity noise of stereo_sigma_px, shadow of the second imager
+  double stereo_baseline_m = 0.05;    // second imager to the right
+  double stereo_focal_px = 383.0;     // at 640 px wide
+  double stereo_sigma_px = 0.08;      // subpixel matching noise: sigma(z) = z^2 sigma / (f B)
+  double edge_hole_fraction = 0.5;    // of the pixels at a depth edge, no match
+
+  // Any sensor: surfaces that absorb the IR (Scene::dark_treads)
+  double dark_dropout = 0.5;          // probability a pixel on a dark surface reads nothing
 
   bool holes = true;                 // small random holes
   double holes_per_megapixel = 400.0;  // hole centres per 10^6 pixels per frame
@@ -45,6 +70,36 @@ struct SensorModel {
 
 // Everything off but the range limits.
 SensorModel perfect_sensor();
+
+// kinect1 (the default), kinect2 (512x424 ToF), d435 (640x480 stereo); throws
+// std::invalid_argument naming the sensor.
+SensorModel sensor_preset(const std::string& name);
+std::string sensor_name(SensorKind kind);
+// The sensor's native depth intrinsics scaled to width x height (0 x 0 = native).
+Intrinsics sensor_intrinsics(SensorKind kind, int width = 0, int height = 0);
+
+// Kinect v2: edge pixels (depth differs by more than edge_jump_ratio from a
+// neighbour) take, with flying_fraction, a depth between their neighbourhood's
+// nearest and farthest.
+void apply_flying_pixels(const SensorModel& m, Rng& rng, int width, int height, std::vector<float>& depth_m,
+                         std::vector<float>& scratch_m);
+
+// Kinect v2: a pixel within multipath_range_m of a face that stands in front
+// of its own (a concave corner) reads farther, by up to multipath_bias_m.
+void apply_multipath(const SensorModel& m, const Intrinsics& K, const Geometry& g, const Eigen::Isometry3d& camera_in_stair,
+                     const ZBuffer& zb, std::vector<float>& depth_m);
+
+// Kinect v2: metric noise sigma(z) = tof_sigma_a_m + tof_sigma_b z.
+void apply_tof_noise(const SensorModel& m, Rng& rng, std::vector<float>& depth_m);
+
+// D4xx: disparity noise of stereo_sigma_px (scaled with the width), and no
+// match at edge_hole_fraction of the edge pixels.
+void apply_stereo_noise(const SensorModel& m, double focal_px, Rng& rng, std::vector<float>& depth_m);
+void apply_edge_holes(const SensorModel& m, Rng& rng, int width, int height, std::vector<float>& depth_m);
+
+// Pixels on dark faces (`dark[id]`) read nothing with probability dark_dropout.
+void apply_dark_dropout(const SensorModel& m, const std::vector<uint8_t>& dark, const ZBuffer& zb, Rng& rng,
+                        std::vector<float>& depth_m);
 
 
 // Zeroes pixels whose surface point the projector (offset along the camera's

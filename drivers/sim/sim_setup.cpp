@@ -10,16 +10,20 @@ namespace stairs::sim {
 namespace {
 
 const char* const kSensorSwitches[][2] = {
-    {"no-shadow", "projector shadow"},     {"no-axial-noise", "axial noise"},
-    {"no-quantisation", "disparity quantisation"}, {"no-lateral-noise", "lateral edge noise"},
+    {"no-shadow", "projector (d435: second imager) shadow"},     {"no-axial-noise", "axial noise"},
+    {"no-quantisation", "disparity quantisation"},
+    {"no-lateral-noise", "edge effects (kinect1: edges wander, kinect2: flying pixels, d435: holes)"},
+    {"no-multipath", "kinect2 multipath in concave corners"},
     {"no-grazing", "grazing-incidence dropout"},   {"no-holes", "random holes"}};
 
-Intrinsics parse_resolution(const std::string& r) {
+// The sensor's native intrinsics, scaled to --resolution when given.
+Intrinsics parse_resolution(const std::string& r, SensorKind sensor) {
+  if (r.empty()) return sensor_intrinsics(sensor);
   int w = 0, h = 0;
   char x = 0;
   if (std::sscanf(r.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 16 || h < 16 || w > 2048 || h > 2048)
     throw std::runtime_error("--resolution: expected WIDTHxHEIGHT (e.g. 640x480, 320x240), got '" + r + "'");
-  return scale_intrinsics({640, 480, 525.0, 525.0, 319.5, 239.5}, w, h);
+  return sensor_intrinsics(sensor, w, h);
 }
 
 double positive(const Options& o, const std::string& name) {
@@ -53,7 +57,9 @@ void add_setup_options(Options& o) {
       .add("yaw", "DEG", "heading offset from straight up/down the stair", "0")
       .add("wobble", "X", "scale of the hand-held wobble / robot vibration, 0 = steady", "1")
       .add("approach", "M", "distance before the first edge where approach/full start", "3")
-      .add("resolution", "WxH", "depth resolution; intrinsics scaled from Kinect v1 640x480 fx=fy=525", "640x480")
+      .add("sensor", "NAME", "kinect1 (structured light, 640x480), kinect2 (time of flight, 512x424) or d435 (stereo, 640x480)",
+           "kinect1")
+      .add("resolution", "WxH", "depth resolution; the sensor's native intrinsics scaled (default: native)")
       .add("perfect", "", "noiseless depth: no sensor effects except the 0.5-4.5 m range");
   for (const auto& s : kSensorSwitches) o.add(s[0], "", std::string("switch off the ") + s[1]);
   o.add("seed", "N", "random seed: the same seed gives the same bytes (and a furniture preset's sizes)", "1");
@@ -96,15 +102,21 @@ SimSetup setup_from_options(const Options& o) {
     }
   }
 
-  s.K = parse_resolution(o.get("resolution"));
+  try {
+    s.sensor = sensor_preset(o.get("sensor"));
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("--sensor: ") + e.what());
+  }
+  s.K = parse_resolution(o.has("resolution") ? o.get("resolution") : "", s.sensor.kind);
 
   s.sensor.perfect = o.flag("perfect");
-  s.sensor.shadow = !o.flag("no-shadow");
-  s.sensor.axial_noise = !o.flag("no-axial-noise");
-  s.sensor.quantisation = !o.flag("no-quantisation");
-  s.sensor.lateral_noise = !o.flag("no-lateral-noise");
-  s.sensor.grazing_dropout = !o.flag("no-grazing");
-  s.sensor.holes = !o.flag("no-holes");
+  s.sensor.multipath = s.sensor.multipath && !o.flag("no-multipath");
+  s.sensor.shadow = s.sensor.shadow && !o.flag("no-shadow");
+  s.sensor.axial_noise = s.sensor.axial_noise && !o.flag("no-axial-noise");
+  s.sensor.quantisation = s.sensor.quantisation && !o.flag("no-quantisation");
+  s.sensor.lateral_noise = s.sensor.lateral_noise && !o.flag("no-lateral-noise");
+  s.sensor.grazing_dropout = s.sensor.grazing_dropout && !o.flag("no-grazing");
+  s.sensor.holes = s.sensor.holes && !o.flag("no-holes");
 
   TrajectoryConfig& t = s.trajectory;
   try {
@@ -139,12 +151,14 @@ nlohmann::json setup_to_json(const SimSetup& s) {
   return {{"seed", s.seed},
           {"camera", to_json(s.K, 0.001)},
           {"sensor",
-           {{"perfect", m.perfect},
+           {{"model", sensor_name(m.kind)},
+            {"perfect", m.perfect},
             {"shadow", m.shadow},
             {"axial_noise", m.axial_noise},
             {"quantisation", m.quantisation},
             {"lateral_noise", m.lateral_noise},
             {"grazing_dropout", m.grazing_dropout},
+            {"multipath", m.multipath},
             {"holes", m.holes},
             {"range_m", {m.min_range_m, m.max_range_m}}}},
           {"trajectory",

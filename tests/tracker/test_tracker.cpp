@@ -124,6 +124,34 @@ TEST(Tracker, StepsCountConfirmations) {
   EXPECT_LT(r.model.registration_rmse_m, 0.03);
 }
 
+// One odd frame (furniture that fits the grammar once) never makes a model:
+// its steps are never published, before or after frames without a stair.
+TEST(Tracker, ASingleOddFrameNeverLeavesAStepInTheModel) {
+  ObservationMaker maker(kStair, 9);
+  Tracker tracker;
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  Observation empty;
+  empty.camera.valid = true;
+  for (int k = 0; k < 5; ++k) {
+    empty.source_utime = k * 33333;
+    EXPECT_TRUE(tracker.update(empty).flights.empty());
+  }
+  const StairModel& m = tracker.update(maker.make(cams[5], 5 * 33333));
+  EXPECT_FALSE(m.confirmed);
+  EXPECT_TRUE(m.flights.empty());
+  EXPECT_FALSE(m.camera_valid);
+  for (int k = 6; k < 60; ++k) {
+    empty.source_utime = k * 33333;
+    const StairModel& later = tracker.update(empty);
+    EXPECT_TRUE(later.flights.empty()) << k;
+    EXPECT_FALSE(later.confirmed) << k;
+  }
+  // Observations that agree confirm it.
+  for (int k = 60; k < 63; ++k) tracker.update(maker.make(cams[k], k * 33333));
+  EXPECT_TRUE(tracker.model().confirmed);
+  EXPECT_FALSE(tracker.model().flights.empty());
+}
+
 TEST(Tracker, OutOfOrderObservationsAreDroppedAndCounted) {
   ObservationMaker maker(kStair, 5);
   Tracker tracker;

@@ -1,0 +1,66 @@
+// Verification (perception/verification.hpp): a solid flight passes, furniture
+// that fits the grammar is refuted by the evidence a flight would leave.
+#include "drivers/sim/furniture.hpp"
+#include "drivers/sim/render.hpp"
+#include "drivers/sim/trajectory.hpp"
+#include "perception/pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+namespace stairs {
+namespace {
+
+// Two steps of 0.17 m rise and 0.28 m run, 1.0 m wide, their fronts 2.0 m
+// ahead of a camera 1.4 m high pitched 35 deg down.
+Observation two_steps() {
+  sim::Scene s;
+  s.kind = sim::SceneKind::FlatRoom;
+  s.walls = sim::Walls::None;
+  s.flat_length_m = 5.0;
+  for (int k = 0; k < 2; ++k) {
+    const double x0 = 2.0 + 0.28 * k, top = 0.17 * (k + 1);
+    s.boxes.push_back({{x0, -0.5, 0.0}, {x0 + 0.28 * (2 - k), 0.5, top}});
+  }
+  const Intrinsics K{640, 480, 525.0, 525.0, 319.5, 239.5};
+  sim::Renderer r(s, K, sim::perfect_sensor(), 1);
+  Pipeline p;
+  return p.process(r.render(sim::camera_pose({0.0, 0.0, 1.4}, 0.0, -35.0, 0.0), 0, 0));
+}
+
+TEST(PerceptionVerification, ASolidFlightIsAStaircase) {
+  const Observation o = two_steps();
+  EXPECT_EQ(o.direction, Direction::Up) << o.status;
+  EXPECT_GE(o.steps.size(), 2u) << o.status;
+  EXPECT_EQ(o.status, "ok");
+  for (const Step& st : o.steps) {
+    if (!(st.inferred & kStepRiserInferred)) {
+      EXPECT_NEAR(*st.riser_height_m, 0.17, 0.01);
+    }
+  }
+}
+
+// A kitchen table with chairs (stairs-sim's kitchen_table, seed 2) seen from
+// 1.4 m at 1.2 m: a chair seat and the table top fit the grammar as a
+// two-step flight; beneath the seat's front the view runs on to the floor.
+TEST(PerceptionVerification, AChairBeforeATableIsNoStaircaseSeenThroughBeneathTheSeat) {
+  const sim::Scene scene = sim::furniture_scene("kitchen_table", 2);
+  sim::TrajectoryConfig tc = sim::trajectory_defaults(sim::Carrier::HandHeld);
+  tc.height_m = 1.4;
+  tc.pitch_deg = -30;
+  tc.fps = 10;
+  const sim::Trajectory traj(scene, tc);
+  sim::Renderer r(scene, Intrinsics{640, 480, 525.0, 525.0, 319.5, 239.5}, sim::SensorModel{}, 2);
+  const DepthImage img = r.render(traj.pose(40), static_cast<int64_t>(traj.time_s(40) * 1e6), 40);
+  const Observation o = Pipeline().process(img);
+  EXPECT_TRUE(o.steps.empty()) << o.status;
+  EXPECT_NE(o.status.find("seen through beneath the nosing"), std::string::npos) << o.status;
+  // The grammar alone (every check off) takes it for a flight.
+  PerceptionConfig unverified;
+  VerificationConfig& v = unverified.verification;
+  v.riser_support = v.foot_support = v.widths = v.alignment = v.regularity = false;
+  const Observation u = Pipeline(unverified).process(img);
+  EXPECT_GE(u.steps.size(), 2u) << u.status;
+}
+
+}  // namespace
+}  // namespace stairs
