@@ -238,11 +238,11 @@ Verdict verify(const NormalGrid& grid, const Intrinsics& K, const Eigen::Matrix3
       if (t.refuted(c)) fail(k, "seen through beneath the nosing: no riser", t.through / double(t.solid + t.through));
     }
     if (c.foot_support && !up && !f.rise_measured) {
-      // Going down, a level whose riser below is unseen is a step only where
-      // the view drops beyond its edge (no floor running on past a depth jump).
+      // Going down, a level whose riser below is unseen is no step where the
+      // level runs on beyond its edge (a floor past a noisy depth jump).
       const Tally t = drop_probes(pr, ps, f, c);
-      if (t.solid + t.through < c.min_decided_probes || t.through * 2 < t.solid + t.through)
-        fail(k, "no drop seen beyond the edge", t.through / std::max(1.0, double(t.solid + t.through)));
+      if (t.solid + t.through >= c.min_decided_probes && t.through * 2 < t.solid + t.through)
+        fail(k, "the level runs on beyond its edge: no drop", t.through / double(t.solid + t.through));
     }
     if (c.foot_support) {
       const float next_s = k + 1 < steps.size() ? frames[k + 1].s : 1e9f;
