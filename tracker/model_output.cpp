@@ -65,13 +65,12 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
   for (size_t i = 0; i < steps.size(); ++i) {
     const MapStep& s = *steps[i];
     Step out_step;
+    // A rise measured within one frame (tread to tread, no registration in
+    // between) is the better figure; the fused heights' difference where
+    // no frame measured it.
     double riser = first_riser;
-    if (i > 0) {
-      riser = s.z() - steps[i - 1]->z();
-      // Two steps apart (an unfilled gap): trust the step's own measurement.
-      if (s.riser_height_m.known() && std::abs(riser - s.riser_height_m.value) > 0.5 * s.riser_height_m.value)
-        riser = s.riser_height_m.value;
-    }
+    if (s.riser_height_m.known()) riser = s.riser_height_m.value;
+    else if (i > 0) riser = s.z() - steps[i - 1]->z();
     const double far = i + 1 < steps.size() ? steps[i + 1]->x() : s.tread_far_x_m;
     const double tread = far - s.x();
     const bool known_tread = i + 1 < steps.size() || s.tread_far_x_m > s.x();
