@@ -44,7 +44,7 @@ PerceptionConfig load_perception_config(const std::string& json_path) {
   X(max_sample_points) X(max_other_points) X(max_planes) X(max_edges)
 #define STAIRS_VERIFICATION_FIELDS(X)                                                                         \
   X(riser_support) X(foot_support) X(widths) X(alignment) X(regularity) X(lateral_samples) X(vertical_samples)  \
-  X(lateral_margin) X(vertical_margin) X(max_nosing_overhang_m) X(min_probe_elevation_deg) X(foot_offset_m) X(solid_tolerance_m) X(solid_tolerance_per_m2)          \
+  X(lateral_margin) X(vertical_margin) X(max_nosing_overhang_m) X(min_probe_elevation_deg) X(probe_offset_m) X(probe_depth_m) X(solid_tolerance_m) X(solid_tolerance_per_m2)          \
   X(max_see_through) X(min_decided_probes) X(border_margin_px) X(end_offset_m) X(min_width_ratio) X(min_lateral_overlap)        \
   X(max_riser_yaw_spread_deg) X(rise_tolerance_m) X(run_tolerance_m) X(min_run_m) \
   X(rise_outlier_m) X(run_outlier_m) X(regular_steps_for_an_outlier)
@@ -85,6 +85,7 @@ PerceptionConfig load_perception_config(const std::string& json_path) {
   require(v.solid_tolerance_m > 0 && v.solid_tolerance_per_m2 >= 0, "solid_tolerance_m", "> 0 (per_m2 >= 0)");
   require(v.max_see_through >= 0 && v.max_see_through <= 1, "max_see_through", "within 0..1");
   require(v.min_decided_probes >= 1, "min_decided_probes", ">= 1");
+  require(v.probe_offset_m > 0 && v.probe_depth_m > 0, "probe_offset_m", "> 0 (probe_depth_m too)");
   require(v.min_width_ratio >= 0 && v.min_width_ratio <= 1, "min_width_ratio", "within 0..1");
   require(v.min_lateral_overlap >= 0 && v.min_lateral_overlap <= 1, "min_lateral_overlap", "within 0..1");
   require(v.max_riser_yaw_spread_deg > 0, "max_riser_yaw_spread_deg", "> 0");

@@ -21,7 +21,8 @@ struct VerificationConfig {
   float vertical_margin = 0.25f;      // of the rise left out at top and bottom (nosing overhang, flying pixels)
   float max_nosing_overhang_m = 0.05f;  // m; a riser may stand this far behind its nosing (DIN: 2-5 cm)
   float min_probe_elevation_deg = 10.0f;  // deg; a level seen flatter than this decides no probe on it
-  float foot_offset_m = 0.06f;        // m; the foot probe lies this far in front of the riser
+  float probe_offset_m = 0.06f;       // m; probes of a level lie this far from the edge they test
+  float probe_depth_m = 0.2f;         // m; probes reach this far into a tread (at most its measured depth)
   float solid_tolerance_m = 0.03f;    // m; depth within this (+ the next term) of the probe = a surface there
   float solid_tolerance_per_m2 = 0.005f;  // m per m^2 of depth: sensor noise grows with z^2 (3 sigma of a
                                           // Kinect v1 cell mean at 4 m)

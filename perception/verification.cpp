@@ -109,7 +109,7 @@ Tally riser_probes(const Prober& pr, const PlaneSet& ps, const StepFrame& f, con
 Tally drop_probes(const Prober& pr, const PlaneSet& ps, const StepFrame& f, const VerificationConfig& c) {
   Tally t;
   if (f.z >= 0) return t;
-  for (float lat : lateral_positions(f, c)) t.add(pr.at(ps.to_camera(f.s + c.foot_offset_m, lat, f.z)));
+  for (float lat : lateral_positions(f, c)) t.add(pr.at(ps.to_camera(f.s + c.probe_offset_m, lat, f.z)));
   return t;
 }
 
@@ -139,11 +139,11 @@ Tally foot_probes(const Prober& pr, const PlaneSet& ps, const StepFrame& f, bool
   Tally t;
   const float z_lo = f.z - f.rise;
   if (!f.rise_measured || z_lo >= 0) return t;  // a level we saw, and the camera looks down on it
-  float s = f.s - c.foot_offset_m;
+  float s = f.s - c.probe_offset_m;
   if (!up) {
     if (f.z >= 0) return t;
-    s = f.s * z_lo / f.z + c.foot_offset_m;  // the ray over the nosing meets the lower level there
-    if (s > next_s - c.foot_offset_m) return t;
+    s = f.s * z_lo / f.z + c.probe_offset_m;  // the ray over the nosing meets the lower level there
+    if (s > next_s - c.probe_offset_m) return t;
   }
   if (s <= 0 || !steep_enough(s, z_lo, c)) return t;
   // Going up the ray over the foot may meet this step's riser behind it.
@@ -204,96 +204,138 @@ void irregular(const std::vector<std::pair<size_t, double>>& values, double tole
 
 float yaw_of(const Plane& p) { return std::atan2(-p.normal.y(), -p.normal.x()); }
 
-}  // namespace
+// The checks over one hypothesis; a failing step truncates the verdict there.
+class Verifier {
+ public:
+  Verifier(const NormalGrid& grid, const Intrinsics& K, const Eigen::Matrix3f& gravity, const PlaneSet& ps, bool up,
+           std::vector<Step>& steps, const VerificationConfig& c)
+      : pr_(grid, K, gravity, c), K_(K), ps_(ps), up_(up), steps_(steps), c_(c) {
+    verdict_.kept = steps.size();
+    for (const Step& st : steps) frames_.push_back(step_frame(ps, st));
+  }
 
-Verdict verify(const NormalGrid& grid, const Intrinsics& K, const Eigen::Matrix3f& gravity, const PlaneSet& ps,
-               Direction direction, std::vector<Step>& steps, const VerificationConfig& c, float max_rise_m) {
-  Verdict v;
-  v.kept = steps.size();
-  if (steps.empty()) return v;
-  char buf[160];
-  const auto fail = [&](size_t k, const char* what, double value) {
-    if (k >= v.kept) return;
-    v.kept = k;
-    std::snprintf(buf, sizeof buf, "step %zu: %s (%.2f)", k + 1, what, value);
-    v.reason = buf;
-  };
-  const bool up = direction == Direction::Up;
-  const Prober pr(grid, K, gravity, c);
-  const float margin_px = c.border_margin_px * K.width / 640.0f;
-  std::vector<StepFrame> frames;
-  for (const Step& st : steps) frames.push_back(step_frame(ps, st));
+  // Flags the width partial unless the tread lies inside the image and ends in open space on both sides.
+  void width_seen(size_t k) {
+    const StepFrame& f = frames_[k];
+    const float s = f.s + (up_ ? c_.probe_offset_m : -c_.probe_offset_m);
+    const double lo = pr_.column(ps_.to_camera(s, f.t_lo, f.z)), hi = pr_.column(ps_.to_camera(s, f.t_hi, f.z));
+    const float margin_px = c_.border_margin_px * K_.width / 640.0f;
+    const bool in_image = std::min(lo, hi) > margin_px && std::max(lo, hi) < K_.width - margin_px;
+    if (!in_image || !both_ends_open(pr_, ps_, f, up_, probe_depth(k), c_)) steps_[k].inferred |= kStepWidthPartial;
+  }
 
-  for (size_t k = 0; k < steps.size(); ++k) {
-    const StepFrame& f = frames[k];
-    // Cut by the image border: the width seen is a lower bound.
-    const float s_probe = f.s + (up ? 0.05f : -0.05f);
-    const double lo = pr.column(ps.to_camera(s_probe, f.t_lo, f.z)), hi = pr.column(ps.to_camera(s_probe, f.t_hi, f.z));
-    const bool in_image = std::min(lo, hi) > margin_px && std::max(lo, hi) < K.width - margin_px;
-    const float tread_m = std::min(steps[k].tread_depth_m.value_or(0.2), 0.3);
-    if (!in_image || !both_ends_open(pr, ps, f, up, static_cast<float>(tread_m), c))
-      steps[k].inferred |= kStepWidthPartial;
-    if (c.riser_support && up) {
-      const Tally t = riser_probes(pr, ps, f, c);
-      if (t.refuted(c)) fail(k, "seen through beneath the nosing: no riser", t.through / double(t.solid + t.through));
+  // riser_support, foot_support and the tread probes of `widths`: the surfaces a step is made of.
+  void surfaces(size_t k) {
+    const StepFrame& f = frames_[k];
+    const auto fraction = [](const Tally& t) { return t.through / double(t.solid + t.through); };
+    if (c_.riser_support && up_) {
+      const Tally t = riser_probes(pr_, ps_, f, c_);
+      if (t.refuted(c_)) fail(k, "seen through beneath the nosing: no riser", fraction(t));
     }
-    if (c.foot_support && !up && !f.rise_measured) {
+    if (c_.foot_support && !up_ && !f.rise_measured) {
       // Going down, a level whose riser below is unseen is no step where the
       // level runs on beyond its edge (a floor past a noisy depth jump).
-      const Tally t = drop_probes(pr, ps, f, c);
-      if (t.solid + t.through >= c.min_decided_probes && t.through * 2 < t.solid + t.through)
-        fail(k, "the level runs on beyond its edge: no drop", t.through / double(t.solid + t.through));
+      const Tally t = drop_probes(pr_, ps_, f, c_);
+      if (t.solid + t.through >= c_.min_decided_probes && t.through * 2 < t.solid + t.through)
+        fail(k, "the level runs on beyond its edge: no drop", fraction(t));
     }
-    if (c.foot_support) {
-      const float next_s = k + 1 < steps.size() ? frames[k + 1].s : 1e9f;
-      const Tally t = foot_probes(pr, ps, f, up, next_s, c);
-      if (t.refuted(c)) fail(k, "the level below does not reach the riser", t.through / double(t.solid + t.through));
+    if (c_.foot_support) {
+      const Tally t = foot_probes(pr_, ps_, f, up_, k + 1 < frames_.size() ? frames_[k + 1].s : 1e9f, c_);
+      if (t.refuted(c_)) fail(k, "the level below does not reach the riser", fraction(t));
     }
-    if (c.widths) {
-      const Tally t = tread_probes(pr, ps, f, up, static_cast<float>(tread_m), c);
-      if (t.refuted(c)) fail(k, "seen through the tread across its width", t.through / double(t.solid + t.through));
-    }
-    if (c.widths && k > 0) {
-      const StepFrame& a = frames[k - 1];
-      const float wa = a.t_hi - a.t_lo, wb = f.t_hi - f.t_lo, narrow = std::min(wa, wb);
-      const float overlap = std::min(a.t_hi, f.t_hi) - std::max(a.t_lo, f.t_lo);
-      if (narrow > 0 && overlap < c.min_lateral_overlap * narrow) fail(k, "treads do not overlap laterally", overlap);
-      const bool narrow_cut = (wa <= wb ? steps[k - 1].inferred : steps[k].inferred) & kStepWidthPartial;
-      if (!narrow_cut && narrow < c.min_width_ratio * std::max(wa, wb))
-        fail(k, "tread widths disagree", narrow / std::max(wa, wb));
+    if (c_.widths) {
+      const Tally t = tread_probes(pr_, ps_, f, up_, probe_depth(k), c_);
+      if (t.refuted(c_)) fail(k, "seen through the tread across its width", fraction(t));
     }
   }
-  if (c.alignment) {
+
+  // widths: consecutive treads overlap, and agree where the narrower one's width is its whole.
+  void widths(size_t k) {
+    if (!c_.widths || k == 0) return;
+    const StepFrame &a = frames_[k - 1], &b = frames_[k];
+    const float wa = a.t_hi - a.t_lo, wb = b.t_hi - b.t_lo, narrow = std::min(wa, wb), wide = std::max(wa, wb);
+    const float overlap = std::min(a.t_hi, b.t_hi) - std::max(a.t_lo, b.t_lo);
+    if (narrow > 0 && overlap < c_.min_lateral_overlap * narrow) fail(k, "treads do not overlap laterally", overlap);
+    const bool narrow_cut = (wa <= wb ? steps_[k - 1].inferred : steps_[k].inferred) & kStepWidthPartial;
+    if (!narrow_cut && narrow < c_.min_width_ratio * wide) fail(k, "tread widths disagree", narrow / wide);
+  }
+
+  // alignment: the segmented risers are parallel in plan view.
+  void alignment() {
+    if (!c_.alignment) return;
+    const auto segmented = [&](const Step& st) {
+      return st.riser_plane >= 0 && ps_.planes[st.riser_plane].source == PlaneSource::Segmented;
+    };
     std::vector<double> yaws;
-    for (const Step& st : steps)
-      if (st.riser_plane >= 0 && ps.planes[st.riser_plane].source == PlaneSource::Segmented)
-        yaws.push_back(yaw_of(ps.planes[st.riser_plane]));
-    if (yaws.size() >= 2) {
-      const double m = median(yaws), limit = c.max_riser_yaw_spread_deg * M_PI / 180.0;
-      for (size_t k = 0; k < steps.size(); ++k)
-        if (steps[k].riser_plane >= 0 && ps.planes[steps[k].riser_plane].source == PlaneSource::Segmented) {
-          const double d = std::abs(yaw_of(ps.planes[steps[k].riser_plane]) - m);
-          if (d > limit) fail(k, "riser not parallel to the others (deg)", d * 180.0 / M_PI);
-        }
+    for (const Step& st : steps_)
+      if (segmented(st)) yaws.push_back(yaw_of(ps_.planes[st.riser_plane]));
+    if (yaws.size() < 2) return;
+    const double m = median(yaws), limit = c_.max_riser_yaw_spread_deg * M_PI / 180.0;
+    for (size_t k = 0; k < steps_.size(); ++k) {
+      const double d = segmented(steps_[k]) ? std::abs(yaw_of(ps_.planes[steps_[k].riser_plane]) - m) : 0.0;
+      if (d > limit) fail(k, "riser not parallel to the others (deg)", d * 180.0 / M_PI);
     }
   }
-  if (c.regularity) {
+
+  // regularity: measured rises and runs plausible and regular (inferred values take no part).
+  void regularity(float max_rise_m) {
+    if (!c_.regularity) return;
     std::vector<std::pair<size_t, double>> rises, runs;  // (step, measured value)
-    for (size_t k = 0; k < steps.size(); ++k) {
-      const Step& st = steps[k];
+    for (size_t k = 0; k < steps_.size(); ++k) {
+      const Step& st = steps_[k];
       if (st.riser_height_m && !(st.inferred & kStepRiserInferred)) {
         if (*st.riser_height_m > max_rise_m) fail(k, "rise too high to climb (m)", *st.riser_height_m);
         rises.emplace_back(k, *st.riser_height_m);
       }
       if (st.tread_depth_m && !st.landing && !(st.inferred & kStepTreadPartial)) {
-        if (*st.tread_depth_m < c.min_run_m) fail(k, "run too short to stand on (m)", *st.tread_depth_m);
+        if (*st.tread_depth_m < c_.min_run_m) fail(k, "run too short to stand on (m)", *st.tread_depth_m);
         runs.emplace_back(k, *st.tread_depth_m);
       }
     }
-    irregular(rises, c.rise_tolerance_m, c.rise_outlier_m, c.regular_steps_for_an_outlier, "rise", fail);
-    if (runs.size() >= 2) irregular(runs, c.run_tolerance_m, c.run_outlier_m, c.regular_steps_for_an_outlier, "run", fail);
+    const auto f = [this](size_t k, const char* what, double value) { fail(k, what, value); };
+    irregular(rises, c_.rise_tolerance_m, c_.rise_outlier_m, c_.regular_steps_for_an_outlier, "rise", f);
+    if (runs.size() >= 2) irregular(runs, c_.run_tolerance_m, c_.run_outlier_m, c_.regular_steps_for_an_outlier, "run", f);
   }
-  return v;
+
+  const Verdict& verdict() const { return verdict_; }
+
+ private:
+  // How far into the tread its probes reach: its measured depth, at most probe_depth_m.
+  float probe_depth(size_t k) const {
+    return static_cast<float>(std::min<double>(steps_[k].tread_depth_m.value_or(c_.probe_depth_m), c_.probe_depth_m));
+  }
+  // The nearest failing step keeps the verdict: it and every step beyond are dropped.
+  void fail(size_t k, const char* what, double value) {
+    if (k >= verdict_.kept) return;
+    verdict_.kept = k;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "step %zu: %s (%.2f)", k + 1, what, value);
+    verdict_.reason = buf;
+  }
+
+  const Prober pr_;
+  const Intrinsics& K_;
+  const PlaneSet& ps_;
+  const bool up_;
+  std::vector<Step>& steps_;
+  const VerificationConfig& c_;
+  std::vector<StepFrame> frames_;
+  Verdict verdict_;
+};
+
+}  // namespace
+
+Verdict verify(const NormalGrid& grid, const Intrinsics& K, const Eigen::Matrix3f& gravity, const PlaneSet& ps,
+               Direction direction, std::vector<Step>& steps, const VerificationConfig& c, float max_rise_m) {
+  Verifier v(grid, K, gravity, ps, direction == Direction::Up, steps, c);
+  for (size_t k = 0; k < steps.size(); ++k) {
+    v.width_seen(k);
+    v.surfaces(k);
+    v.widths(k);
+  }
+  v.alignment();
+  v.regularity(max_rise_m);
+  return v.verdict();
 }
 
 }  // namespace stairs

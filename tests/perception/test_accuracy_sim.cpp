@@ -126,7 +126,9 @@ TEST(PerceptionSimAccuracy, NoStairsOnNonStairScenes) {
   for (const char* preset : {"flat_room", "ramp", "curb"}) {
     const Stats st = evaluate(preset, false);
     EXPECT_EQ(st.detected, 0) << preset;
-    if (std::string(preset) != "ramp") EXPECT_LE(st.pitch_err, 1.0) << preset;
+    if (std::string(preset) != "ramp") {
+      EXPECT_LE(st.pitch_err, 1.0) << preset;
+    }
   }
 }
 
