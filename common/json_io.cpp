@@ -33,6 +33,25 @@ std::optional<double> optional_number(const json& j, const char* key, const std:
 
 json optional_to_json(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
 
+// `key` as n finite numbers, or nullopt when absent or null; anything else is
+// the reader's own error naming the field (never a raw JSON type error).
+std::optional<std::vector<double>> numbers(const json& j, const char* key, size_t n, const std::string& what) {
+  auto it = j.find(key);
+  if (it == j.end() || it->is_null()) return std::nullopt;
+  if (!it->is_array() || it->size() != n) fail(what, std::string("'") + key + "' is not an array of " + std::to_string(n));
+  std::vector<double> out;
+  for (const json& v : *it) {
+    if (!v.is_number() || !std::isfinite(v.get<double>())) fail(what, std::string("'") + key + "' holds a non-number");
+    out.push_back(v.get<double>());
+  }
+  return out;
+}
+
+const json& object_at(const json& array, size_t i, const std::string& what) {
+  if (!array[i].is_object()) fail(what, "is not an object");
+  return array[i];
+}
+
 }  // namespace
 
 json to_json(const Intrinsics& K, double depth_scale) {
@@ -107,40 +126,50 @@ GroundTruth ground_truth_from_json(const json& j, const std::string& what) {
   if (auto it = j.find("scene"); it != j.end() && it->is_string()) gt.scene = it->get<std::string>();
   auto flights = j.find("flights");
   if (flights == j.end() || !flights->is_array()) fail(what, "missing array 'flights'");
-  for (const json& jf : *flights) {
+  for (size_t fi = 0; fi < flights->size(); ++fi) {
+    const std::string wf = what + ": flights[" + std::to_string(fi) + "]";
+    const json& jf = object_at(*flights, fi, wf);
     Flight f;
-    if (auto w = optional_number(jf, "width_m", what)) f.width_m = *w;
+    if (auto w = optional_number(jf, "width_m", wf)) f.width_m = *w;
     auto steps = jf.find("steps");
-    if (steps == jf.end() || !steps->is_array()) fail(what, "flight without array 'steps'");
-    for (const json& js : *steps) {
+    if (steps == jf.end() || !steps->is_array()) fail(wf, "missing array 'steps'");
+    for (size_t si = 0; si < steps->size(); ++si) {
+      const std::string ws = wf + ".steps[" + std::to_string(si) + "]";
+      const json& js = object_at(*steps, si, ws);
       Step s;
-      s.riser_height_m = optional_number(js, "riser_height_m", what);
-      s.tread_depth_m = optional_number(js, "tread_depth_m", what);
-      s.landing = js.value("landing", false);
-      if (auto w = optional_number(js, "width_m", what)) s.width_m = *w;
-      auto nos = js.find("nosing_m");
-      if (nos != js.end() && nos->is_array() && nos->size() == 2)
-        s.nosing_m = {(*nos)[0].get<double>(), 0.0, (*nos)[1].get<double>()};
+      s.riser_height_m = optional_number(js, "riser_height_m", ws);
+      s.tread_depth_m = optional_number(js, "tread_depth_m", ws);
+      if (auto l = js.find("landing"); l != js.end()) {
+        if (!l->is_boolean()) fail(ws, "'landing' is not true/false");
+        s.landing = l->get<bool>();
+      }
+      if (auto w = optional_number(js, "width_m", ws)) s.width_m = *w;
+      if (auto n = numbers(js, "nosing_m", 2, ws)) s.nosing_m = {(*n)[0], 0.0, (*n)[1]};
       f.steps.push_back(s);
     }
     gt.flights.push_back(std::move(f));
   }
   if (auto frames = j.find("frames"); frames != j.end()) {
     if (!frames->is_array()) fail(what, "'frames' is not an array");
-    for (const json& jf : *frames) {
+    for (size_t i = 0; i < frames->size(); ++i) {
+      const std::string wf = what + ": frames[" + std::to_string(i) + "]";
+      const json& jf = object_at(*frames, i, wf);
       GroundTruthFrame fr;
-      fr.timestamp = number(jf, "timestamp", what);
-      fr.pitch_deg = number(jf, "pitch_deg", what);
-      fr.roll_deg = number(jf, "roll_deg", what);
-      fr.height_m = number(jf, "height_m", what);
-      fr.distance_m = optional_number(jf, "distance_m", what);
-      if (auto p = jf.find("position_m"); p != jf.end() && p->is_array() && p->size() == 3)
-        fr.position_m = {(*p)[0].get<double>(), (*p)[1].get<double>(), (*p)[2].get<double>()};
-      if (auto q = jf.find("quaternion_wxyz"); q != jf.end() && q->is_array() && q->size() == 4)
-        fr.orientation = Eigen::Quaterniond((*q)[0].get<double>(), (*q)[1].get<double>(),
-                                            (*q)[2].get<double>(), (*q)[3].get<double>());
-      if (auto v = jf.find("visible_steps"); v != jf.end() && v->is_array())
-        fr.visible_steps = v->get<std::vector<int>>();
+      fr.timestamp = number(jf, "timestamp", wf);
+      fr.pitch_deg = number(jf, "pitch_deg", wf);
+      fr.roll_deg = number(jf, "roll_deg", wf);
+      fr.height_m = number(jf, "height_m", wf);
+      fr.distance_m = optional_number(jf, "distance_m", wf);
+      if (auto p = numbers(jf, "position_m", 3, wf)) fr.position_m = {(*p)[0], (*p)[1], (*p)[2]};
+      if (auto q = numbers(jf, "quaternion_wxyz", 4, wf)) fr.orientation = Eigen::Quaterniond((*q)[0], (*q)[1], (*q)[2], (*q)[3]);
+      if (auto v = jf.find("visible_steps"); v != jf.end() && !v->is_null()) {
+        if (!v->is_array()) fail(wf, "'visible_steps' is not an array");
+        for (const json& k : *v) {
+          if (!k.is_number_integer() || k.get<int64_t>() < 0 || k.get<int64_t>() > 32767)
+            fail(wf, "'visible_steps' holds a value that is no step index (0..32767)");
+          fr.visible_steps.push_back(k.get<int>());
+        }
+      }
       gt.frames.push_back(std::move(fr));
     }
   }

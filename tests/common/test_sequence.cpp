@@ -133,6 +133,28 @@ TEST(Sequence, BadJson) {
   fs::remove_all(dir);
 }
 
+// A malformed field gives the reader's own error naming the file and the field,
+// never a raw JSON type error (the sequence-parser fuzz target found a step
+// that was a number: tests/fuzz/corpus/sequence/step_is_a_number).
+TEST(Sequence, MalformedGroundTruthFieldsNameTheField) {
+  const fs::path dir = write_sequence("badgt");
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"flights":[{"steps":[5]}]})", "groundtruth.json: flights[0].steps[0]: is not an object"},
+      {R"({"flights":[7]})", "groundtruth.json: flights[0]: is not an object"},
+      {R"({"flights":[{"steps":[{"landing":"yes"}]}]})", "flights[0].steps[0]: 'landing' is not true/false"},
+      {R"({"flights":[{"steps":[{"nosing_m":["a",1]}]}]})", "flights[0].steps[0]: 'nosing_m' holds a non-number"},
+      {R"({"flights":[],"frames":[{"timestamp":0,"pitch_deg":0,"roll_deg":0,"height_m":1,"visible_steps":[1.5]}]})",
+       "frames[0]: 'visible_steps' holds a value that is no step index"},
+      {R"({"flights":[],"frames":[{"timestamp":0,"pitch_deg":0,"roll_deg":0,"height_m":1,"position_m":{"x":1}}]})",
+       "frames[0]: 'position_m' is not an array of 3"},
+      {R"({"flights":[],"frames":[3]})", "frames[0]: is not an object"}};
+  for (const auto& [text, needle] : cases) {
+    std::ofstream(dir / "groundtruth.json") << text;
+    expect_error(dir, needle);
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Sequence, MissingPng) {
   const fs::path dir = write_sequence("nopng");
   fs::remove(dir / "depth" / "000000.png");
