@@ -35,7 +35,8 @@ int64_t now_utime() {
 
 Options::Options(std::string program, std::string summary)
     : program_(std::move(program)), summary_(std::move(summary)) {
-  add("help", "", "show this help and exit");
+  add("help", "", "show this help and exit (also -h)");
+  add("version", "", "print the version and exit");
 }
 
 Options& Options::add(const std::string& name, const std::string& value_name, const std::string& help,
@@ -75,6 +76,7 @@ void Options::parse(int argc, char** argv) {
   };
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
+    if (a == "-h") a = "--help";
     if (a.rfind("--", 0) != 0 || a == "--") {
       positional_values_.push_back(a);
       continue;
@@ -98,6 +100,10 @@ void Options::parse(int argc, char** argv) {
   }
   if (values_.count("help")) {
     std::cout << help();
+    std::exit(0);
+  }
+  if (values_.count("version")) {
+    std::cout << program_ << " " << STAIRS_VERSION << "\n";
     std::exit(0);
   }
   if (positional_values_.size() < required_positionals_) die("missing " + positional_help_[positional_values_.size()].first);

@@ -23,7 +23,8 @@ class Options {
   Options& add(const std::string& name, const std::string& value_name, const std::string& help,
                const std::string& default_value = "");
   Options& positional(const std::string& name, const std::string& help, bool required = true);
-  // Parses argv; prints help and exits 0 on --help, prints an error and exits 2 on a bad option.
+  // Parses argv; prints help and exits 0 on --help or -h, the program and the
+  // project's version on --version; prints an error and exits 2 on a bad option.
   void parse(int argc, char** argv);
   std::string get(const std::string& name) const;
   double get_double(const std::string& name) const;  // exits 2 naming the option if not a number

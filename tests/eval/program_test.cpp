@@ -99,6 +99,17 @@ void expect_complete(const json& r, int frames) {
   EXPECT_TRUE(s["latency_ms"]["perception"]["median"].is_number());
 }
 
+// The shared option parser (common/daemon.hpp): -h is --help, --version names the program and version.
+TEST(EvalProgram, ShortHelpAndVersion) {
+  const Outcome h = run_eval("-h");
+  EXPECT_EQ(h.status, 0) << h.output;
+  EXPECT_EQ(h.output.rfind("Usage: stairs-eval", 0), 0u) << h.output;
+  EXPECT_NE(h.output.find("--version"), std::string::npos) << h.output;
+  const Outcome v = run_eval("--version");
+  EXPECT_EQ(v.status, 0) << v.output;
+  EXPECT_EQ(v.output.rfind("stairs-eval 0.", 0), 0u) << v.output;
+}
+
 TEST(EvalProgram, ScoresLogAndSequenceAlike) {
   const fs::path d = work_dir();
   make_inputs(d / "walk.lcmlog", d / "walk");
