@@ -15,6 +15,10 @@ float PlaneSet::axial(const Eigen::Vector3d& p) const {
   return std::cos(yaw_rad) * static_cast<float>(p.x()) + std::sin(yaw_rad) * static_cast<float>(p.y());
 }
 
+float PlaneSet::lateral(const Eigen::Vector3d& p) const {
+  return -std::sin(yaw_rad) * static_cast<float>(p.x()) + std::cos(yaw_rad) * static_cast<float>(p.y());
+}
+
 std::vector<int> grid_subsample(const NormalGrid& g, const std::vector<int>& cells, int max_points) {
   if (static_cast<int>(cells.size()) <= max_points) return cells;
   int stride = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(cells.size()) / max_points)));

@@ -25,6 +25,8 @@ struct PlaneSet {
   Eigen::Vector3f to_camera(float s, float t, float z) const;
   // Gravity-aligned camera frame -> position along the stair axis (s).
   float axial(const Eigen::Vector3d& p) const;
+  // Gravity-aligned camera frame -> lateral position across the stair (t, left).
+  float lateral(const Eigen::Vector3d& p) const;
 };
 
 // Merges the segments (optical frame) rotated by `gravity` (optical ->

@@ -24,8 +24,8 @@ class Prober {
   // grazing angle); seeing it is no view through.
   Probe at(const Eigen::Vector3f& p_gravity, float known_beyond_m = 0) const {
     const Eigen::Vector3f p = to_optical_ * p_gravity;
-    if (p.z() < 0.1f) return Probe::Undecided;
-    const double u = K_.fx * p.x() / p.z() + K_.cx, v = K_.fy * p.y() / p.z() + K_.cy;
+    if (p.z() < kMinDepth_m) return Probe::Undecided;
+    const double u = column(p), v = K_.fy * p.y() / p.z() + K_.cy;
     if (u < 0 || v < 0 || u >= K_.width || v >= K_.height) return Probe::Undecided;
     const int gx = static_cast<int>(u) / g_.cell_px, gy = static_cast<int>(v) / g_.cell_px;
     if (gx >= g_.width || gy >= g_.height || !g_.has_point[g_.index(gx, gy)]) return Probe::Undecided;
@@ -38,12 +38,15 @@ class Prober {
   float depth(const Eigen::Vector3f& p_gravity) const { return (to_optical_ * p_gravity).z(); }
 
   // Pixel column of a gravity-frame point, or NaN behind the camera.
-  double column(const Eigen::Vector3f& p_gravity) const {
+  double column_of(const Eigen::Vector3f& p_gravity) const {
     const Eigen::Vector3f p = to_optical_ * p_gravity;
-    return p.z() > 0.1f ? K_.fx * p.x() / p.z() + K_.cx : std::nan("");
+    return p.z() > kMinDepth_m ? column(p) : std::nan("");
   }
 
  private:
+  static constexpr float kMinDepth_m = 0.1f;  // nearer points project nowhere useful (behind or at the lens)
+  double column(const Eigen::Vector3f& p_optical) const { return K_.fx * p_optical.x() / p_optical.z() + K_.cx; }
+
   const NormalGrid& g_;
   const Intrinsics& K_;
   Eigen::Matrix3f to_optical_;
@@ -70,8 +73,7 @@ struct StepFrame {
 };
 
 StepFrame step_frame(const PlaneSet& ps, const Step& st) {
-  const float c = std::cos(ps.yaw_rad), sn = std::sin(ps.yaw_rad);
-  const float t = -sn * static_cast<float>(st.nosing_m.x()) + c * static_cast<float>(st.nosing_m.y());
+  const float t = ps.lateral(st.nosing_m);
   const float half = 0.5f * static_cast<float>(st.width_m);
   return {ps.axial(st.nosing_m), t - half, t + half, static_cast<float>(st.nosing_m.z()),
           st.riser_height_m ? static_cast<float>(*st.riser_height_m) : 0.0f,
@@ -218,7 +220,7 @@ class Verifier {
   void width_seen(size_t k) {
     const StepFrame& f = frames_[k];
     const float s = f.s + (up_ ? c_.probe_offset_m : -c_.probe_offset_m);
-    const double lo = pr_.column(ps_.to_camera(s, f.t_lo, f.z)), hi = pr_.column(ps_.to_camera(s, f.t_hi, f.z));
+    const double lo = pr_.column_of(ps_.to_camera(s, f.t_lo, f.z)), hi = pr_.column_of(ps_.to_camera(s, f.t_hi, f.z));
     const float margin_px = c_.border_margin_px * K_.width / 640.0f;
     const bool in_image = std::min(lo, hi) > margin_px && std::max(lo, hi) < K_.width - margin_px;
     if (!in_image || !both_ends_open(pr_, ps_, f, up_, probe_depth(k), c_)) steps_[k].inferred |= kStepWidthPartial;
