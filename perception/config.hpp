@@ -73,7 +73,7 @@ struct PerceptionConfig {
   float beneath_view_edge_margin_m = 0.1f;   // m; a surface whose near edge is this close to where
   float beneath_view_edge_tolerance = 0.15f;  // (+ this fraction) the image's bottom row meets its
                                               // height runs on beneath the camera
-  float beneath_same_level_m = 0.04f;         // m; a nosing this far below a surface is still at its level
+  float beneath_same_level_m = 0.04f;         // m; a surface this close to the flight's first level is that level
 
   // --- edges_depth_jumps
   float edge_jump_min_m = 0.05f;        // m; depth step between vertical neighbours that is a jump

@@ -1,5 +1,6 @@
 #include "perception/pipeline.hpp"
 
+#include "perception/camera_height.hpp"
 #include "perception/edges_depth_jumps.hpp"
 #include "perception/edges_normal_image.hpp"
 #include "perception/gravity.hpp"
@@ -42,52 +43,6 @@ bool usable(const DepthImage& f, std::string& why) {
     return why = "invalid intrinsics", false;
   if (!(std::isfinite(f.depth_scale) && f.depth_scale > 0)) return why = "invalid depth_scale", false;
   return true;
-}
-
-// Height above the horizontal surface beneath: the surface below the camera
-// whose near edge is where the image's bottom row meets its height (it runs
-// on towards the camera; a table top ends farther out); of several, the
-// lowest (the floor beside a table). A surface whose near edge is a step's
-// nosing, at its level (its own front: going up the tread ahead) or above it
-// (the step down to it: looking down a flight the bottom row meets a tread
-// several steps down), or that has a higher tread entirely in front of it,
-// starts there and runs beneath no one; then the height is unknown (unknown
-// beats wrong). None when no such surface is in view: on a flight the tread
-// beneath is out of view, and the tracker's model knows the height there.
-// Still ambiguous: going up, a tread whose front is below the image looks like
-// the floor; beside an open-sided flight the floor below is the lowest surface
-// in view.
-std::optional<double> camera_height(const PlaneSet& ps, const std::vector<Step>& steps, const Intrinsics& K,
-                                    double pitch_deg, const PerceptionConfig& cfg) {
-  const double below_rad = -pitch_deg * M_PI / 180.0 + std::atan((K.height - 1 - K.cy) / K.fy);
-  if (below_rad <= 0) return std::nullopt;
-  const auto starts_ahead = [&](const PlaneExtent& e) {
-    for (const Step& st : steps) {
-      if (ps.axial(st.nosing_m) < e.s_min + cfg.beneath_view_edge_margin_m && st.nosing_m.z() > e.z_mean - cfg.beneath_same_level_m)
-        return true;
-    }
-    const float higher_m = cfg.riser_min_m * (1 - cfg.din_tolerance);
-    for (size_t j = 0; j < ps.planes.size(); ++j) {
-      const PlaneExtent& u = ps.extents[j];
-      if (ps.planes[j].kind == PlaneKind::Tread && u.z_mean > e.z_mean + higher_m &&
-          u.s_max < e.s_min + cfg.beneath_view_edge_margin_m)
-        return true;
-    }
-    return false;
-  };
-  // The lowest surface reaching the bottom row; if it starts ahead, a higher
-  // one (a box top beside the floor) is no better a guess.
-  const PlaneExtent* lowest = nullptr;
-  for (size_t i = 0; i < ps.planes.size(); ++i) {
-    const PlaneExtent& e = ps.extents[i];
-    if (ps.planes[i].kind != PlaneKind::Tread || e.z_mean >= 0) continue;
-    const double view_edge_m = below_rad >= M_PI / 2 ? 0.0 : -e.z_mean / std::tan(below_rad);
-    if (e.s_min < view_edge_m * (1 + cfg.beneath_view_edge_tolerance) + cfg.beneath_view_edge_margin_m &&
-        (!lowest || e.z_mean < lowest->z_mean))
-      lowest = &e;
-  }
-  if (!lowest || starts_ahead(*lowest)) return std::nullopt;
-  return -static_cast<double>(lowest->z_mean);
 }
 
 }  // namespace
@@ -144,7 +99,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   }
   clock.mark("verification");
   if (static_cast<int>(steps.size()) < cfg_.min_steps) steps.clear();
-  obs.camera.height_m = camera_height(ps, steps, frame.K, obs.camera.pitch_deg, cfg_);
+  obs.camera.height_m = camera_height(ps, steps, chain.direction, frame.K, obs.camera.pitch_deg, cfg_);
   if (!steps.empty()) {
     obs.direction = chain.direction;
     obs.steps = std::move(steps);

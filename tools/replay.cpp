@@ -72,6 +72,16 @@ class ProgressBar {
   Clock::time_point start_ = Clock::now(), last_;
 };
 
+TrackedCamera tracked_camera(const StairModel& m) {
+  TrackedCamera c;
+  c.valid = m.camera_valid;
+  c.height_m = m.camera_height_m;
+  c.step_index = m.camera_step_index;
+  c.position_m = m.camera_position_m;
+  c.orientation = m.camera_orientation;
+  return c;
+}
+
 }  // namespace
 
 RunResult replay(const std::string& input, const ReplayOptions& options, const FrameHook& hook) {
@@ -114,6 +124,7 @@ RunResult replay(const std::string& input, const ReplayOptions& options, const F
     f.steps = std::move(obs.steps);
     f.status = obs.status;
     f.tracked_steps = steps_from_camera(tracker.model());
+    f.tracked_camera = tracked_camera(tracker.model());
     f.latency.push_back({"perception", ms_between(t0, t1)});
     f.latency.push_back({"tracker", ms_between(t1, t2)});
     for (const StageLatency& s : obs.stages) f.latency.push_back({"perception/" + s.name, s.ms});

@@ -47,6 +47,13 @@ void print_score(std::ostream& out, const Score& s) {
              num(s.roll_error_deg.mean_abs).c_str(), num(s.height_error_cm.mean_abs).c_str());
   out << fmt("  height where the surface beneath is in view: %s cm over %d frames\n",
              num(s.height_error_beneath_visible_cm.mean_abs).c_str(), s.height_error_beneath_visible_cm.n);
+  if (s.tracked_camera_coverage)
+    out << fmt("Tracked camera over %d frames (%.1f %% of frames since the first): height %s cm, "
+               "step beneath right %s %%, position along the stair %s cm\n",
+               s.tracked_camera_frames, 100.0 * *s.tracked_camera_coverage,
+               num(s.tracked_height_error_cm.mean_abs).c_str(),
+               s.tracked_step_index_accuracy ? fmt("%.1f", 100.0 * *s.tracked_step_index_accuracy).c_str() : "n/a",
+               num(s.tracked_position_error_cm.mean_abs).c_str());
 }
 
 void print_model(std::ostream& out, const StairModel& m) {

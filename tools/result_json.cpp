@@ -32,6 +32,17 @@ const char* direction_name(Direction d) {
   }
 }
 
+json tracked_camera_to_json(const TrackedCamera& c) {
+  if (!c.valid) return {{"valid", false}, {"height_m", nullptr}, {"step_index", nullptr}, {"position_m", nullptr},
+                        {"quaternion_wxyz", nullptr}};
+  const Eigen::Quaterniond& q = c.orientation;
+  return {{"valid", true},
+          {"height_m", c.height_m},
+          {"step_index", c.step_index},
+          {"position_m", {c.position_m.x(), c.position_m.y(), c.position_m.z()}},
+          {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
+}
+
 json frame_to_json(const FrameResult& f) {
   const CameraPose& c = f.camera;
   json camera = {{"valid", c.valid},
@@ -41,13 +52,15 @@ json frame_to_json(const FrameResult& f) {
                  {"distance_m", c.valid ? or_null(c.distance_m) : json(nullptr)}};
   json latency = {{"perception", nullptr}, {"tracker", nullptr}};
   for (const StageLatency& l : f.latency) latency[l.name] = l.ms;
-  return {{"timestamp", f.timestamp_s},
+  json out = {{"timestamp", f.timestamp_s},
           {"camera", camera},
           {"direction", direction_name(f.direction)},
           {"steps", steps_to_json(f.steps)},
           {"tracked_steps", f.tracked_steps ? steps_to_json(*f.tracked_steps) : json(nullptr)},
           {"latency_ms", latency},
           {"status", f.status}};
+  if (f.tracked_camera) out["tracked_camera"] = tracked_camera_to_json(*f.tracked_camera);
+  return out;
 }
 
 json model_to_json(const StairModel& m) {
@@ -85,8 +98,14 @@ json score_to_json(const Score& s) {
       {"pitch_error_deg", or_null(s.pitch_error_deg.mean_abs)},
       {"roll_error_deg", or_null(s.roll_error_deg.mean_abs)},
       {"height_error_cm", or_null(s.height_error_cm.mean_abs)},
+      {"height_frames", s.height_error_cm.n},
       {"height_error_beneath_visible_cm", or_null(s.height_error_beneath_visible_cm.mean_abs)},
       {"height_frames_beneath_visible", s.height_error_beneath_visible_cm.n},
+      {"tracked_camera_frames", s.tracked_camera_frames},
+      {"tracked_camera_coverage", or_null(s.tracked_camera_coverage)},
+      {"tracked_height_error_cm", or_null(s.tracked_height_error_cm.mean_abs)},
+      {"tracked_step_index_accuracy", or_null(s.tracked_step_index_accuracy)},
+      {"tracked_position_error_cm", or_null(s.tracked_position_error_cm.mean_abs)},
       {"latency_ms", latency}};
 }
 
@@ -103,7 +122,10 @@ json result_to_json(const RunResult& r) {
                         {"tracked_matched", fs.tracked ? json(*fs.tracked) : json(nullptr)},
                         {"true_pitch_deg", fs.pitch_deg},
                         {"true_roll_deg", fs.roll_deg},
-                        {"true_height_m", fs.height_m}};
+                        {"true_height_m", fs.height_m},
+                        {"true_step_index", fs.true_step_index},
+                        {"tracked_step_index", or_null(fs.tracked_step_index)},
+                        {"tracked_position_error_cm", or_null(fs.tracked_position_error_cm)}};
     }
     frames.push_back(std::move(frame));
   }

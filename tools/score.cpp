@@ -80,7 +80,27 @@ Eigen::Vector2d riser_foot(const std::vector<Step>& real, int k) {
   return foot0 + k * Eigen::Vector2d(s0.tread_depth_m.value_or(0.0), s0.riser_height_m.value_or(0.0));
 }
 
+// The whole-step offset (real index - model index) that most of one frame's
+// tracked-step matches agree on (the smaller one on a tie); none without a match.
+std::optional<int> frame_model_offset(const std::vector<int>& tracked_real) {
+  std::map<int, int> votes;
+  for (size_t i = 0; i < tracked_real.size(); ++i)
+    if (tracked_real[i] >= 0) ++votes[tracked_real[i] - static_cast<int>(i)];
+  std::optional<int> best;
+  int most = 0;
+  for (const auto& [offset, n] : votes)
+    if (n > most) best = offset, most = n;
+  return best;
+}
+
 }  // namespace
+
+int true_step_beneath(const GroundTruthFrame& frame, const std::vector<Step>& real) {
+  int level = -1;  // the highest step whose nosing is behind the camera
+  for (size_t k = 0; k < real.size(); ++k)
+    if (real[k].nosing_m.x() <= frame.position_m.x()) level = static_cast<int>(k);
+  return level;
+}
 
 std::vector<Step> real_steps(const GroundTruth& truth) {
   std::vector<Step> out;
@@ -104,10 +124,7 @@ Eigen::Vector3d true_nosing_in_gravity_frame(const Step& real, const GroundTruth
 bool beneath_in_view(const GroundTruthFrame& frame, const std::vector<Step>& real, const Intrinsics& K) {
   const Eigen::Vector3d& p = frame.position_m;
   const double forward_x = gravity_frame_in_stair(frame).linear()(0, 0);  // +1 walking up the x axis
-  // The level beneath: the highest step whose nosing is behind the camera.
-  int level = -1;  // -1 = the floor before the first step
-  for (size_t k = 0; k < real.size(); ++k)
-    if (real[k].nosing_m.x() <= p.x()) level = static_cast<int>(k);
+  const int level = true_step_beneath(frame, real);
   const double surface_z = level < 0 ? 0.0 : real[static_cast<size_t>(level)].nosing_m.z();
   // Where that level ends ahead of the camera (none: it runs on).
   std::optional<double> end_x;
@@ -209,7 +226,8 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
                 const GroundTruth& truth) {
   Score s;
   const std::vector<Step> real = real_steps(truth);
-  Accumulator pitch, roll, height, height_visible;
+  Accumulator pitch, roll, height, height_visible, tracked_height, tracked_position;
+  int tracked_right_step = 0, frames_since_tracked = 0;
   for (const FrameResult& f : frames) {
     s.frames.emplace_back();
     if (!f.truth) continue;
@@ -219,6 +237,7 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
     fs.pitch_deg = gt.pitch_deg;
     fs.roll_deg = gt.roll_deg;
     fs.height_m = gt.height_m;
+    fs.true_step_index = true_step_beneath(gt, real);
     const auto matched_real = [](const std::vector<StepMatch>& ms, size_t detected) {
       std::vector<int> out(detected, -1);
       for (const StepMatch& m : ms) out[static_cast<size_t>(m.detected)] = m.real;
@@ -241,6 +260,20 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
       fs.tracked = matched_real(tracked, f.tracked_steps->size());
       s.tracked_steps_matched += matched_visible(tracked);
       s.tracked_false_steps += static_cast<int>(f.tracked_steps->size() - tracked.size());
+    }
+    if (f.tracked_camera && (f.tracked_camera->valid || frames_since_tracked > 0)) {
+      ++frames_since_tracked;
+      const TrackedCamera& tc = *f.tracked_camera;
+      if (tc.valid) {
+        ++s.tracked_camera_frames;
+        tracked_height.add(100.0 * (tc.height_m - gt.height_m));
+        if (const auto offset = fs.tracked ? frame_model_offset(*fs.tracked) : std::nullopt) {
+          fs.tracked_step_index = tc.step_index + *offset;
+          tracked_right_step += *fs.tracked_step_index == fs.true_step_index ? 1 : 0;
+          fs.tracked_position_error_cm = 100.0 * (tc.position_m.x() + riser_foot(real, *offset).x() - gt.position_m.x());
+          tracked_position.add(*fs.tracked_position_error_cm);
+        }
+      }
     }
     if (f.K) {
       std::set<int> with_nosing;
@@ -273,6 +306,11 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
   s.roll_error_deg = roll.stats();
   s.height_error_cm = height.stats();
   s.height_error_beneath_visible_cm = height_visible.stats();
+  s.tracked_height_error_cm = tracked_height.stats();
+  s.tracked_position_error_cm = tracked_position.stats();
+  if (frames_since_tracked > 0) s.tracked_camera_coverage = double(s.tracked_camera_frames) / frames_since_tracked;
+  if (s.tracked_camera_frames > 0)
+    s.tracked_step_index_accuracy = double(tracked_right_step) / s.tracked_camera_frames;
 
   if (model) {
     s.model_scored = true;

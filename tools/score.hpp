@@ -11,6 +11,15 @@
 
 namespace stairs::eval {
 
+// The tracker's camera after a frame (DESIGN.md frames[].tracked_camera).
+struct TrackedCamera {
+  bool valid = false;
+  double height_m = 0.0;  // above the surface beneath
+  int step_index = -1;    // model step beneath, counted across flights; -1 = floor before the first
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // camera centre in the model's stair frame
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // optical -> model stair frame
+};
+
 // What the replay keeps of one frame.
 struct FrameResult {
   double timestamp_s = 0.0;
@@ -22,6 +31,7 @@ struct FrameResult {
   // frame; tracker/model_output.hpp steps_from_camera), absent when no tracker
   // ran; empty while the model has no camera.
   std::optional<std::vector<Step>> tracked_steps;
+  std::optional<TrackedCamera> tracked_camera;  // absent when no tracker ran
   // "perception", "tracker" and perception's own stages as "perception/<name>".
   std::vector<StageLatency> latency;
   std::optional<GroundTruthFrame> truth;
@@ -48,6 +58,12 @@ struct FrameScore {
   std::vector<int> matched;                 // real step per detected step, -1 when false
   std::optional<std::vector<int>> tracked;  // the same for the tracked steps
   double pitch_deg = 0, roll_deg = 0, height_m = 0;  // the true camera pose
+  int true_step_index = -1;  // real step beneath the camera (-1 = floor before the first)
+  // The tracked camera's step beneath as a real step index, through this
+  // frame's tracked-step matches; absent without a valid tracked camera or
+  // when none of its steps matched.
+  std::optional<int> tracked_step_index;
+  std::optional<double> tracked_position_error_cm;  // along the stair (x), with that offset
 };
 
 struct Score {
@@ -75,6 +91,14 @@ struct Score {
   int tracked_steps_matched = 0;
   std::optional<double> frame_step_detection_tracked;
   int tracked_false_steps = 0;  // tracked steps matched to no real step, all frames
+  // The tracker's camera (TrackedCamera) against the true one, over the frames
+  // where it is valid: its model is put on the real steps by the whole-step
+  // offset most of this frame's tracked-step matches agree on.
+  int tracked_camera_frames = 0;                   // valid tracked camera, with truth
+  std::optional<double> tracked_camera_coverage;   // those / frames from the first of them on
+  ErrorStats tracked_height_error_cm;              // above the surface beneath
+  std::optional<double> tracked_step_index_accuracy;  // right step beneath / tracked_camera_frames
+  ErrorStats tracked_position_error_cm;            // along the stair (x), where an offset is known
   // Tables 6.2-6.4: the final model (absent when no tracker ran).
   bool model_scored = false;
   int model_steps_real = 0;
@@ -112,6 +136,10 @@ Eigen::Isometry3d gravity_frame_in_stair(const GroundTruthFrame& frame);
 // line runs within 30 deg of the optical axis, at its point nearest the camera.
 Eigen::Vector3d true_nosing_in_gravity_frame(const Step& real, const GroundTruthFrame& frame,
                                              double left_m = 0.0);
+
+// The real step beneath the true camera: the highest whose nosing is behind
+// it (-1 = the floor before the first step).
+int true_step_beneath(const GroundTruthFrame& frame, const std::vector<Step>& real);
 
 // True when part of the level the camera stands over (floor, tread or
 // landing, from the real steps) lies in the image: the lowest image row, seen

@@ -90,10 +90,14 @@ TEST(EvalLogs, AccuracyFloors) {
       << log << "FLOOR(perception) false steps: " << s["false_steps"];
   EXPECT_LE(num(s["pitch_error_deg"]), 1.0) << log << "FLOOR(perception) pitch error " << s["pitch_error_deg"] << " deg";
   EXPECT_LE(num(s["roll_error_deg"]), 1.0) << log << "FLOOR(perception) roll error " << s["roll_error_deg"] << " deg";
-  // The issue's floor holds where the floor or a tread beneath is in view.
-  EXPECT_LE(num(s["height_error_beneath_visible_cm"]), 3.0)
-      << log << "FLOOR(perception) height error " << s["height_error_beneath_visible_cm"] << " cm over "
-      << s["height_frames_beneath_visible"] << " frames with the surface beneath in view";
+  // The issue's floor holds where the floor or a tread beneath is in view
+  // and perception gives a height (it gives none where the frame cannot show
+  // the surface is beneath, e.g. in a room without a stair).
+  if (num(s["height_frames_beneath_visible"]) > 0) {
+    EXPECT_LE(num(s["height_error_beneath_visible_cm"]), 3.0)
+        << log << "FLOOR(perception) height error " << s["height_error_beneath_visible_cm"] << " cm over "
+        << s["height_frames_beneath_visible"] << " frames with the surface beneath in view";
+  }
 
   EXPECT_EQ(num(s["model_steps_detected"]), num(s["model_steps_real"]))
       << log << "FLOOR(tracker) model holds " << s["model_steps_detected"] << " of " << s["model_steps_real"]
@@ -107,6 +111,30 @@ TEST(EvalLogs, AccuracyFloors) {
         << log << "FLOOR(tracker) riser error " << s["riser_error_cm"] << " cm";
     EXPECT_LE(num(s["tread_error_cm"]["mean_abs"]), 1.0)
         << log << "FLOOR(tracker) tread error " << s["tread_error_cm"] << " cm";
+  }
+}
+
+// Issue 15: where the camera is on every frame. Perception's height, where it
+// gives one, within 2 cm on average; the tracker's camera (stairs-eval's
+// tracked_camera) within 2 cm above the surface beneath and on the right step
+// in >= 98 % of the frames where it is valid. A test of its own so that a log
+// missing one of these still has every other floor checked.
+TEST(EvalLogs, CameraFloors) {
+  const json s = score_of_log_under_test();
+  ASSERT_TRUE(s.is_object());
+  const std::string log = log_under_test() + ": ";
+  if (num(s["height_frames"]) > 0) {
+    EXPECT_LE(num(s["height_error_cm"]), 2.0) << log << "FLOOR(perception) height error " << s["height_error_cm"]
+                                              << " cm over " << s["height_frames"] << " frames with a height";
+  }
+  if (num(s["model_steps_real"]) > 0) {
+    EXPECT_GT(num(s["height_frames"]), 0) << log << "FLOOR(perception) no frame with a height";
+    EXPECT_GT(num(s["tracked_camera_frames"]), 0) << log << "FLOOR(tracker) no frame with a tracked camera";
+    EXPECT_LE(num(s["tracked_height_error_cm"]), 2.0)
+        << log << "FLOOR(tracker) camera height error " << s["tracked_height_error_cm"] << " cm";
+    EXPECT_GE(num(s["tracked_step_index_accuracy"]), 0.98)
+        << log << "FLOOR(tracker) step beneath the camera right in " << s["tracked_step_index_accuracy"]
+        << " of " << s["tracked_camera_frames"] << " frames";
   }
 }
 

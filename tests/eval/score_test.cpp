@@ -122,6 +122,40 @@ TEST(EvalScore, TrackedStepsScoredApartFromPerception) {
   EXPECT_EQ(s.frame_false_steps, 0);
 }
 
+// The tracker's camera: its step beneath is put on the real steps through the
+// frame's tracked-step matches; coverage counts from its first valid frame.
+TEST(EvalScore, TrackedCameraAgainstTheTruth) {
+  FabricatedRun run;
+  for (FrameResult& f : run.frames) {
+    f.tracked_steps = f.steps;  // the model's steps in the model's order
+    TrackedCamera c;
+    c.valid = true;
+    c.height_m = 1.0;
+    c.step_index = -1;
+    c.position_m = f.truth->position_m + Eigen::Vector3d(0.01, 0.0, 0.0);
+    f.tracked_camera = c;
+  }
+  run.frames[1].tracked_camera->step_index = 0;  // the wrong step, a rise too low
+  run.frames[1].tracked_camera->height_m = 1.0 - 0.18;
+  run.frames[2].tracked_camera->valid = false;
+  run.frames[2].tracked_steps = std::vector<Step>{};
+  const Score s = run.score();
+  EXPECT_EQ(s.tracked_camera_frames, 2);
+  ASSERT_TRUE(s.tracked_camera_coverage && s.tracked_step_index_accuracy);
+  EXPECT_DOUBLE_EQ(*s.tracked_camera_coverage, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(*s.tracked_step_index_accuracy, 0.5);
+  EXPECT_NEAR(*s.tracked_height_error_cm.mean_abs, 9.0, 1e-9);
+  EXPECT_NEAR(*s.tracked_position_error_cm.mean_abs, 1.0, 1e-9);
+  ASSERT_TRUE(s.frames[1] && s.frames[1]->tracked_step_index);
+  EXPECT_EQ(*s.frames[1]->tracked_step_index, 0);
+  EXPECT_EQ(s.frames[1]->true_step_index, -1);
+  EXPECT_FALSE(s.frames[2]->tracked_step_index);
+  // A model one step short at the bottom: its step 0 is real step 1.
+  for (FrameResult& f : run.frames)
+    if (!f.tracked_steps->empty()) f.tracked_steps->erase(f.tracked_steps->begin());
+  EXPECT_EQ(*run.score().frames[1]->tracked_step_index, 1);
+}
+
 TEST(EvalScore, MatchToleranceIsHalfTreadAndHalfRiser) {
   FabricatedRun run;
   auto& steps = run.frames[0].steps;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 namespace stairs {
 namespace {
@@ -38,7 +39,9 @@ double up_angle_deg(double p1, double r1, double p2, double r2) {
 }
 
 struct Expect {
-  double pitch_deg, roll_deg, height_m, riser_m;
+  double pitch_deg, roll_deg;
+  std::optional<double> height_m;  // none: this frame cannot show the surface beneath
+  double riser_m;
   size_t min_steps;
 };
 
@@ -50,8 +53,10 @@ void check(const std::string& dir, size_t frame, const Expect& e) {
   print(dir, frame, o);
   ASSERT_TRUE(o.camera.valid);
   EXPECT_LE(up_angle_deg(o.camera.pitch_deg, o.camera.roll_deg, e.pitch_deg, e.roll_deg), 1.5);
-  ASSERT_TRUE(o.camera.height_m.has_value());
-  EXPECT_NEAR(*o.camera.height_m, e.height_m, 0.03);
+  ASSERT_EQ(o.camera.height_m.has_value(), e.height_m.has_value());
+  if (e.height_m) {
+    EXPECT_NEAR(*o.camera.height_m, *e.height_m, 0.03);
+  }
   ASSERT_GE(o.steps.size(), e.min_steps);
   EXPECT_EQ(o.direction, Direction::Up);
   for (const Step& s : o.steps) {
@@ -71,8 +76,10 @@ TEST(PerceptionRealdata, Kinect1ThesisPose) {
     print(dir, i, o);
     ASSERT_TRUE(o.camera.valid);
     EXPECT_LE(up_angle_deg(o.camera.pitch_deg, o.camera.roll_deg, -51.0, -4.0), 1.5);
-    ASSERT_TRUE(o.camera.height_m.has_value());
-    EXPECT_NEAR(*o.camera.height_m, 0.648, 0.03);
+    // The lower tread is seen only 0.2-0.35 m ahead, its front out of view:
+    // with the flight's 0.30 m run it may be the tread ahead of the one
+    // beneath, so the height is unknown (issue 15: unknown beats wrong).
+    EXPECT_FALSE(o.camera.height_m.has_value());
   }
 }
 
@@ -132,8 +139,11 @@ TEST(PerceptionRealdata, NormalImageEdgesAtTheNosings) {
   EXPECT_GE(checked, frames);
 }
 
+// The floor straight beneath the camera is in view.
 TEST(PerceptionRealdata, Kinect2LookingDown) { check("kinect2_lab_up", 0, {-76.2, 13.0, 0.964, 0.10, 2}); }
-TEST(PerceptionRealdata, Kinect2WholeFlight) { check("kinect2_lab_up", 1, {-24.3, 2.4, 0.549, 0.10, 3}); }
+// The floor shows only 0.16 m before the first riser, less than a run: a tread
+// whose front is out of view would look the same, so the height is unknown.
+TEST(PerceptionRealdata, Kinect2WholeFlight) { check("kinect2_lab_up", 1, {-24.3, 2.4, std::nullopt, 0.10, 3}); }
 
 }  // namespace
 }  // namespace stairs
