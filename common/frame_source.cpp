@@ -25,6 +25,9 @@ class SequenceSource : public FrameSource {
     f.truth.reset();
     const auto& gt = seq_.ground_truth();
     if (gt && i_ < gt->frames.size()) f.truth = gt->frames[i_];
+    f.odometry.clear();
+    const auto& odometry = seq_.odometry();
+    while (odom_i_ < odometry.size() && odometry[odom_i_].utime <= f.image.utime) f.odometry.push_back(odometry[odom_i_++]);
     ++i_;
     return true;
   }
@@ -35,20 +38,25 @@ class SequenceSource : public FrameSource {
  private:
   SequenceReader seq_;
   std::optional<GroundTruth> truth_;
-  size_t i_ = 0;
+  size_t i_ = 0, odom_i_ = 0;
 };
 
 // Ground truth may be logged before or after its depth frame; frames are
 // matched to it by seq with one frame of look-ahead.
 class LogSource : public FrameSource {
  public:
-  LogSource(const std::string& path, std::string depth_channel, std::string truth_channel)
-      : log_(path), depth_channel_(std::move(depth_channel)), truth_channel_(std::move(truth_channel)) {}
+  LogSource(const std::string& path, std::string depth_channel, std::string truth_channel,
+            std::string odometry_channel)
+      : log_(path),
+        depth_channel_(std::move(depth_channel)),
+        truth_channel_(std::move(truth_channel)),
+        odometry_channel_(std::move(odometry_channel)) {}
 
   bool next(SourceFrame& f) override {
     while (pending_.size() < 2 && !eof_) read_one();
     if (pending_.empty()) return false;
-    f.image = std::move(pending_.front());
+    f.image = std::move(pending_.front().first);
+    f.odometry = std::move(pending_.front().second);
     pending_.pop_front();
     f.truth.reset();
     if (auto it = truth_by_seq_.find(f.image.seq); it != truth_by_seq_.end()) {
@@ -77,7 +85,20 @@ class LogSource : public FrameSource {
       depth_frame_t msg;
       DepthImage img;
       if (decode_message(ev.data.data(), ev.data.size(), msg, error) && from_lcm(msg, img, error)) {
-        pending_.push_back(std::move(img));
+        pending_.emplace_back(std::move(img), std::move(odometry_));
+        odometry_.clear();
+        return;
+      }
+      ++invalid_;
+      last_error_ = log_.path() + ": " + ev.channel + " message skipped: " + error;
+    } else if (ev.channel == odometry_channel_) {
+      pose_t msg;
+      OdometrySample o;
+      if (decode_message(ev.data.data(), ev.data.size(), msg, error) && from_lcm(msg, o, error)) {
+        // At most one frame period of samples is held: a log of odometry
+        // without depth cannot grow this without bound.
+        if (odometry_.size() >= kMaxOdometryPerFrame) odometry_.erase(odometry_.begin());
+        odometry_.push_back(o);
         return;
       }
       ++invalid_;
@@ -96,9 +117,12 @@ class LogSource : public FrameSource {
     }
   }
 
+  static constexpr size_t kMaxOdometryPerFrame = 1000;  // 1 kHz odometry, a 1 s gap between frames
+
   LogReader log_;
-  std::string depth_channel_, truth_channel_;
-  std::deque<DepthImage> pending_;
+  std::string depth_channel_, truth_channel_, odometry_channel_;
+  std::deque<std::pair<DepthImage, std::vector<OdometrySample>>> pending_;
+  std::vector<OdometrySample> odometry_;  // since the last depth frame
   std::map<int32_t, GroundTruthFrame> truth_by_seq_;
   std::optional<GroundTruth> truth_;
   bool eof_ = false;
@@ -109,9 +133,9 @@ class LogSource : public FrameSource {
 }  // namespace
 
 std::unique_ptr<FrameSource> open_frame_source(const std::string& path, const std::string& depth_channel,
-                                               const std::string& truth_channel) {
+                                               const std::string& truth_channel, const std::string& odometry_channel) {
   if (std::filesystem::is_directory(path)) return std::make_unique<SequenceSource>(path);
-  return std::make_unique<LogSource>(path, depth_channel, truth_channel);
+  return std::make_unique<LogSource>(path, depth_channel, truth_channel, odometry_channel);
 }
 
 }  // namespace stairs

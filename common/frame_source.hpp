@@ -7,12 +7,16 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace stairs {
 
 struct SourceFrame {
   DepthImage image;
   std::optional<GroundTruthFrame> truth;
+  // Odometry that arrived since the previous frame (a sequence: timestamps up
+  // to this frame's), in order; empty without odometry.
+  std::vector<OdometrySample> odometry;
 };
 
 class FrameSource {
@@ -33,6 +37,7 @@ class FrameSource {
 // A directory is read as a sequence, a file as an LCM log.
 std::unique_ptr<FrameSource> open_frame_source(const std::string& path,
                                                const std::string& depth_channel = "STAIRS_DEPTH",
-                                               const std::string& truth_channel = "STAIRS_GROUND_TRUTH");
+                                               const std::string& truth_channel = "STAIRS_GROUND_TRUTH",
+                                               const std::string& odometry_channel = "STAIRS_ODOMETRY");
 
 }  // namespace stairs

@@ -98,7 +98,36 @@ STAIRS_INSTANTIATE(stair_observation_t)
 STAIRS_INSTANTIATE(stair_model_t)
 STAIRS_INSTANTIATE(ground_truth_t)
 STAIRS_INSTANTIATE(daemon_status_t)
+STAIRS_INSTANTIATE(pose_t)
 #undef STAIRS_INSTANTIATE
+
+// --- odometry -----------------------------------------------------------------
+
+pose_t to_lcm(const OdometrySample& o) {
+  pose_t m{};
+  m.utime = o.utime;
+  for (int i = 0; i < 3; ++i) m.pos[i] = o.position_m[i];
+  const Eigen::Quaterniond& q = o.orientation;
+  m.orientation[0] = q.w();
+  m.orientation[1] = q.x();
+  m.orientation[2] = q.y();
+  m.orientation[3] = q.z();
+  return m;
+}
+
+bool from_lcm(const pose_t& m, OdometrySample& o, std::string& error) {
+  bool finite = true;
+  for (double v : m.pos) finite = finite && std::isfinite(v);
+  for (double v : m.orientation) finite = finite && std::isfinite(v);
+  if (!finite) return error = "odometry pose with NaN/inf", false;
+  const Eigen::Quaterniond q(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]);
+  if (std::abs(q.norm() - 1.0) > 1e-3)
+    return error = "odometry orientation is no unit quaternion (norm " + std::to_string(q.norm()) + ")", false;
+  o.utime = m.utime;
+  o.position_m = Eigen::Vector3d(m.pos[0], m.pos[1], m.pos[2]);
+  o.orientation = q.normalized();
+  return true;
+}
 
 // --- depth --------------------------------------------------------------------
 
@@ -478,6 +507,7 @@ stair_model_t to_lcm(const StairModel& model, int64_t utime, int64_t source_utim
     }
   m.status = model.status;
   m.confirmed = model.confirmed;
+  m.camera_beneath_known = model.camera_beneath_known;
   return m;
 }
 
@@ -520,6 +550,7 @@ bool from_lcm(const stair_model_t& m, StairModel& model, std::string& error) {
   out.update_latency_ms = m.update_latency_ms;
   out.status = m.status;
   out.confirmed = m.confirmed;
+  out.camera_beneath_known = m.camera_beneath_known;
   model = std::move(out);
   return true;
 }

@@ -8,6 +8,7 @@
 #include <stairs/daemon_status_t.hpp>
 #include <stairs/depth_frame_t.hpp>
 #include <stairs/ground_truth_t.hpp>
+#include <stairs/pose_t.hpp>
 #include <stairs/stair_model_t.hpp>
 #include <stairs/stair_observation_t.hpp>
 
@@ -46,6 +47,11 @@ ground_truth_t to_lcm(const GroundTruth& gt, const GroundTruthFrame& frame, int6
 bool from_lcm(const ground_truth_t& msg, GroundTruth& gt, GroundTruthFrame& frame, std::string& error);
 
 // Step and flight conversions used by the above (and by tools that build messages).
+// --- odometry ------------------------------------------------------------------
+pose_t to_lcm(const OdometrySample& o);
+// Rejects non-finite values and an orientation whose norm is off 1 by more than 1e-3.
+bool from_lcm(const pose_t& msg, OdometrySample& o, std::string& error);
+
 step_t to_lcm(const Step& s);
 Step from_lcm(const step_t& s);
 plane_t to_lcm(const Plane& p);

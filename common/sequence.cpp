@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <cinttypes>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -41,6 +42,38 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
 
   const std::string gt = (fs::path(dir) / "groundtruth.json").string();
   if (fs::exists(gt)) ground_truth_ = ground_truth_from_json(read_json_file(gt), gt);
+  const std::string odometry = (fs::path(dir) / "odometry.txt").string();
+  if (fs::exists(odometry)) odometry_ = read_odometry_file(odometry);
+}
+
+std::vector<OdometrySample> read_odometry_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": unreadable");
+  std::vector<OdometrySample> out;
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    const std::string where = path + ":" + std::to_string(line_no) + ": ";
+    std::istringstream ls(line);
+    double t, v[7];
+    if (!(ls >> t >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5] >> v[6]))
+      throw std::runtime_error(where + "expected '<timestamp_s> x y z qw qx qy qz'");
+    bool finite = std::isfinite(t);
+    for (double x : v) finite = finite && std::isfinite(x);
+    if (!finite) throw std::runtime_error(where + "NaN or inf");
+    OdometrySample o;
+    o.utime = static_cast<int64_t>(t * 1e6 + (t >= 0 ? 0.5 : -0.5));
+    o.position_m = Eigen::Vector3d(v[0], v[1], v[2]);
+    const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+    if (std::abs(q.norm() - 1.0) > 1e-3) throw std::runtime_error(where + "qw qx qy qz is no unit quaternion");
+    o.orientation = q.normalized();
+    if (!out.empty() && o.utime <= out.back().utime) throw std::runtime_error(where + "time does not increase");
+    out.push_back(o);
+  }
+  return out;
 }
 
 DepthImage SequenceReader::read(size_t i) const {
@@ -73,6 +106,7 @@ SequenceWriter::SequenceWriter(const std::string& dir, const Intrinsics& K, doub
   make_directories((fs::path(dir) / "depth").string());
   // A stale index from an earlier run would make this one look complete early.
   fs::remove(fs::path(dir) / "depth.txt");
+  fs::remove(fs::path(dir) / "odometry.txt");
   index_ = "# depth maps: uint16 PNG, depth along the optical axis, 0 = no measurement\n"
            "# timestamp filename\n";
 }
@@ -91,8 +125,18 @@ void SequenceWriter::write(const DepthImage& img, double timestamp_s) {
   index_ += line;
 }
 
+void SequenceWriter::write_odometry(const OdometrySample& o) {
+  if (odometry_.empty()) odometry_ = "# camera optical frame in a drifting odometry frame (z up), m\n# timestamp_s x y z qw qx qy qz\n";
+  const Eigen::Quaterniond& q = o.orientation;
+  char line[224];
+  std::snprintf(line, sizeof(line), "%.6f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", o.utime * 1e-6, o.position_m.x(),
+                o.position_m.y(), o.position_m.z(), q.w(), q.x(), q.y(), q.z());
+  odometry_ += line;
+}
+
 void SequenceWriter::finish(const std::optional<GroundTruth>& ground_truth) {
   write_json_file((fs::path(dir_) / "camera.json").string(), to_json(K_, depth_scale_));
+  if (!odometry_.empty()) write_file_atomically((fs::path(dir_) / "odometry.txt").string(), odometry_);
   if (ground_truth) write_json_file((fs::path(dir_) / "groundtruth.json").string(), to_json(*ground_truth));
   write_file_atomically((fs::path(dir_) / "depth.txt").string(), index_);
 }

@@ -22,6 +22,8 @@ class SequenceReader {
   double timestamp(size_t i) const { return entries_.at(i).timestamp; }
   const std::string& depth_path(size_t i) const { return entries_.at(i).path; }
   const std::optional<GroundTruth>& ground_truth() const { return ground_truth_; }
+  // odometry.txt (optional, empty without it), in time order: utime = timestamp in us.
+  const std::vector<OdometrySample>& odometry() const { return odometry_; }
 
   // Loads frame i; utime = timestamp in us, seq = i. Throws "FILE: reason" on a
   // missing, unreadable, 8-bit or wrongly sized PNG.
@@ -37,7 +39,13 @@ class SequenceReader {
   double depth_scale_ = 0.001;
   std::vector<Entry> entries_;
   std::optional<GroundTruth> ground_truth_;
+  std::vector<OdometrySample> odometry_;
 };
+
+// odometry.txt: "# timestamp_s x y z qw qx qy qz", one pose per line. Throws
+// "FILE:LINE: reason" on a malformed line, a non-unit quaternion or time
+// going backwards.
+std::vector<OdometrySample> read_odometry_file(const std::string& path);
 
 class SequenceWriter {
  public:
@@ -47,6 +55,8 @@ class SequenceWriter {
 
   // Writes depth/NNNNNN.png for the image (which must match K).
   void write(const DepthImage& img, double timestamp_s);
+  // Appends one line to odometry.txt (written by finish()); utime in us.
+  void write_odometry(const OdometrySample& o);
   void finish(const std::optional<GroundTruth>& ground_truth = std::nullopt);
 
  private:
@@ -54,6 +64,7 @@ class SequenceWriter {
   Intrinsics K_;
   double depth_scale_;
   std::string index_;
+  std::string odometry_;
   size_t count_ = 0;
 };
 

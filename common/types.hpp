@@ -141,6 +141,9 @@ struct StairModel {
   Eigen::Quaterniond camera_orientation = Eigen::Quaterniond::Identity();  // optical -> stair
   double camera_height_m = 0.0;
   int camera_step_index = -1;  // -1 = floor before the first step
+  // camera_height_m and camera_step_index hold: the camera is over a part of
+  // the stair the model has seen (false beyond its far end).
+  bool camera_beneath_known = false;
   int observations_fused = 0;
   bool confirmed = false;  // enough observations agree on the same steps (flights are empty until then)
   double registration_rmse_m = -1.0;
@@ -148,6 +151,14 @@ struct StairModel {
   double update_latency_ms = 0.0;
   std::vector<Plane> planes;
   std::string status;
+};
+
+// The camera optical frame's pose in a drifting odometry frame (z up):
+// DESIGN.md odometry.txt, channel STAIRS_ODOMETRY (stairs.pose_t).
+struct OdometrySample {
+  int64_t utime = 0;  // us
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // optical -> odometry
 };
 
 // Ground truth of one frame (groundtruth.json "frames" / ground_truth_t).

@@ -75,8 +75,10 @@ class ProgressBar {
 TrackedCamera tracked_camera(const StairModel& m) {
   TrackedCamera c;
   c.valid = m.camera_valid;
-  c.height_m = m.camera_height_m;
-  c.step_index = m.camera_step_index;
+  if (m.camera_beneath_known) {
+    c.height_m = m.camera_height_m;
+    c.step_index = m.camera_step_index;
+  }
   c.position_m = m.camera_position_m;
   c.orientation = m.camera_orientation;
   return c;
@@ -111,6 +113,7 @@ RunResult replay(const std::string& input, const ReplayOptions& options, const F
     const DepthImage image = downsample(sf.image, factor);
     if (hook) hook(image);
 
+    for (const OdometrySample& o : sf.odometry) tracker.add_odometry(o);
     const auto t0 = Clock::now();
     Observation obs = pipeline.process(image);
     const auto t1 = Clock::now();

@@ -37,8 +37,8 @@ json tracked_camera_to_json(const TrackedCamera& c) {
                         {"quaternion_wxyz", nullptr}};
   const Eigen::Quaterniond& q = c.orientation;
   return {{"valid", true},
-          {"height_m", c.height_m},
-          {"step_index", c.step_index},
+          {"height_m", or_null(c.height_m)},
+          {"step_index", or_null(c.step_index)},
           {"position_m", {c.position_m.x(), c.position_m.y(), c.position_m.z()}},
           {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
 }
@@ -102,6 +102,7 @@ json score_to_json(const Score& s) {
       {"height_error_beneath_visible_cm", or_null(s.height_error_beneath_visible_cm.mean_abs)},
       {"height_frames_beneath_visible", s.height_error_beneath_visible_cm.n},
       {"tracked_camera_frames", s.tracked_camera_frames},
+      {"tracked_beneath_frames", s.tracked_beneath_frames},
       {"tracked_camera_coverage", or_null(s.tracked_camera_coverage)},
       {"tracked_height_error_cm", or_null(s.tracked_height_error_cm.mean_abs)},
       {"tracked_step_index_accuracy", or_null(s.tracked_step_index_accuracy)},

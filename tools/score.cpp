@@ -266,10 +266,14 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
       const TrackedCamera& tc = *f.tracked_camera;
       if (tc.valid) {
         ++s.tracked_camera_frames;
-        tracked_height.add(100.0 * (tc.height_m - gt.height_m));
-        if (const auto offset = fs.tracked ? frame_model_offset(*fs.tracked) : std::nullopt) {
-          fs.tracked_step_index = tc.step_index + *offset;
-          tracked_right_step += *fs.tracked_step_index == fs.true_step_index ? 1 : 0;
+        if (tc.height_m) tracked_height.add(100.0 * (*tc.height_m - gt.height_m));
+        const auto offset = fs.tracked ? frame_model_offset(*fs.tracked) : std::nullopt;
+        if (tc.step_index) {
+          ++s.tracked_beneath_frames;
+          if (offset) fs.tracked_step_index = *tc.step_index + *offset;
+          tracked_right_step += fs.tracked_step_index == fs.true_step_index ? 1 : 0;
+        }
+        if (offset) {
           fs.tracked_position_error_cm = 100.0 * (tc.position_m.x() + riser_foot(real, *offset).x() - gt.position_m.x());
           tracked_position.add(*fs.tracked_position_error_cm);
         }
@@ -309,8 +313,8 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
   s.tracked_height_error_cm = tracked_height.stats();
   s.tracked_position_error_cm = tracked_position.stats();
   if (frames_since_tracked > 0) s.tracked_camera_coverage = double(s.tracked_camera_frames) / frames_since_tracked;
-  if (s.tracked_camera_frames > 0)
-    s.tracked_step_index_accuracy = double(tracked_right_step) / s.tracked_camera_frames;
+  if (s.tracked_beneath_frames > 0)
+    s.tracked_step_index_accuracy = double(tracked_right_step) / s.tracked_beneath_frames;
 
   if (model) {
     s.model_scored = true;

@@ -14,8 +14,11 @@ namespace stairs::eval {
 // The tracker's camera after a frame (DESIGN.md frames[].tracked_camera).
 struct TrackedCamera {
   bool valid = false;
-  double height_m = 0.0;  // above the surface beneath
-  int step_index = -1;    // model step beneath, counted across flights; -1 = floor before the first
+  // Above the surface beneath and the model step beneath it (counted across
+  // flights, -1 = floor before the first): none where the model has not seen
+  // what lies beneath the camera.
+  std::optional<double> height_m;
+  std::optional<int> step_index;
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // camera centre in the model's stair frame
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // optical -> model stair frame
 };
@@ -95,9 +98,10 @@ struct Score {
   // where it is valid: its model is put on the real steps by the whole-step
   // offset most of this frame's tracked-step matches agree on.
   int tracked_camera_frames = 0;                   // valid tracked camera, with truth
+  int tracked_beneath_frames = 0;                  // ... and a known step beneath
   std::optional<double> tracked_camera_coverage;   // those / frames from the first of them on
   ErrorStats tracked_height_error_cm;              // above the surface beneath
-  std::optional<double> tracked_step_index_accuracy;  // right step beneath / tracked_camera_frames
+  std::optional<double> tracked_step_index_accuracy;  // right step beneath / tracked_beneath_frames
   ErrorStats tracked_position_error_cm;            // along the stair (x), where an offset is known
   // Tables 6.2-6.4: the final model (absent when no tracker ran).
   bool model_scored = false;

@@ -43,6 +43,8 @@ void validate(const TrackerConfig& c) {
   require(c.max_reconstructed_gap_steps >= 0, "max_reconstructed_gap_steps");
   require(c.lost_after_s > 0 && c.reset_after_s > 0, "lost_after_s/reset_after_s");
   require(c.predict_camera_s >= 0 && c.predict_camera_s <= c.max_prediction_s, "predict_camera_s");
+  require(c.odometry_max_age_s >= 0 && c.odometry_max_age_s <= 10, "odometry_max_age_s");
+  require(c.odometry_max_samples >= 2 && c.odometry_max_samples <= 1000000, "odometry_max_samples");
 }
 
 TrackerConfig load_tracker_config(const std::string& json_path) {
@@ -60,7 +62,7 @@ TrackerConfig load_tracker_config(const std::string& json_path) {
   X(min_seed_steps) X(icp_max_distance_m) X(icp_max_tread_fraction) X(icp_min_distance_m) X(icp_distance_factor)                    \
   X(icp_iterations_per_stage) X(registration_points_per_plane) X(nosing_weight_points) X(accept_distance_m) \
   X(min_inlier_ratio) X(max_yaw_jump_deg) X(max_translation_jump_m) X(velocity_window_s)                 \
-  X(max_prediction_s) X(predict_camera_s) X(relocalise_after_s) X(relocalise_step_range) X(match_riser_fraction)              \
+  X(max_prediction_s) X(predict_camera_s) X(odometry_max_age_s) X(odometry_max_samples) X(relocalise_after_s) X(relocalise_step_range) X(match_riser_fraction)              \
   X(match_tread_fraction) X(max_average_weight) X(max_plane_points) X(default_riser_m) X(default_tread_m) \
   X(landing_min_depth_m) X(min_confirmations) X(max_model_steps) X(monotonic_tolerance_m) X(direction_window)                \
   X(direction_majority) X(max_reconstructed_gap_steps) X(reconstruct_tolerance) X(lost_after_s)           \

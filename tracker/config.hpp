@@ -28,6 +28,11 @@ struct TrackerConfig {
                                             // a rejected registration) still places the camera by the
                                             // motion prior this long after the last registration
 
+  // --- odometry (optional input, tracker/odometry_prior.hpp): the motion prior where it covers
+  double odometry_max_age_s = 0.25;  // s; odometry this old at a frame still holds (late samples,
+                                     // 4 Hz odometry at worst); older is no prior
+  int odometry_max_samples = 20000;  // history cap (200 s at 100 Hz): memory stays bounded
+
   // --- relocalisation after a gap or loss
   double relocalise_after_s = 0.2;  // s; a gap longer than this triggers a whole-step search
   int relocalise_step_range = 2;    // whole-step shifts tried each way

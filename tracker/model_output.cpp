@@ -49,6 +49,7 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
   out.camera_valid = camera_valid && !steps.empty();
   out.camera_step_index = -1;
   out.camera_height_m = 0.0;
+  out.camera_beneath_known = false;
   if (steps.empty()) return;
 
   const double tread_typ = typical_tread_m(map, c);
@@ -114,6 +115,9 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
   while (k + 1 < static_cast<int>(step_x.size()) && step_x[k + 1] <= cam.x()) ++k;
   out.camera_step_index = k;
   out.camera_height_m = cam.z() - (k < 0 ? 0.0 : step_z[k]);
+  // Beyond the last step's seen tread the model knows nothing of the surface.
+  const MapStep& last = *steps.back();
+  out.camera_beneath_known = cam.x() <= std::max(last.x(), last.tread_far_x_m) - origin.x();
 }
 
 std::vector<Step> steps_from_camera(const StairModel& model) {

@@ -6,6 +6,7 @@
 #include "tracker/registration.hpp"
 #include "tracker/relocalisation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -37,7 +38,9 @@ std::optional<double> ascending_yaw(const Observation& obs) {
 }  // namespace
 
 Tracker::Tracker(TrackerConfig config)
-    : config_(config), direction_(config.direction_window, config.direction_majority) {
+    : config_(config),
+      direction_(config.direction_window, config.direction_majority),
+      odometry_(config.odometry_max_age_s, static_cast<size_t>(std::max(2, config.odometry_max_samples))) {
   validate(config_);
 }
 
@@ -45,7 +48,7 @@ void Tracker::reset() {
   map_ = StairMap();
   direction_.reset();
   accepted_.clear();
-  have_utime_ = false;
+  have_utime_ = false;  // odometry is kept: it is no state of the model
   const StairModel fresh;
   model_ = fresh;
   ++resets_;
@@ -68,8 +71,13 @@ bool Tracker::seed(const Observation& obs) {
   return true;
 }
 
+bool Tracker::odometry_covers(int64_t utime) const {
+  return !accepted_.empty() && odometry_.covers(accepted_.back().first, utime);
+}
+
 Pose4 Tracker::predict(int64_t utime) const {
   const auto& [t1, p1] = accepted_.back();
+  if (const auto p = odometry_.predict(p1, t1, utime)) return *p;
   const auto& [t0, p0] = accepted_.front();
   const double dt = seconds(utime - t1);
   if (t1 == t0 || dt > config_.max_prediction_s) return p1;
@@ -101,8 +109,10 @@ const StairModel& Tracker::update(const Observation& obs) {
 
   // A stair lost for long is dropped once a new one is in view: until then the
   // last model stays published.
+  // With odometry over the gap the model is kept: the prior still places it.
   if (!map_.empty() && !obs.steps.empty() &&
-      seconds(obs.source_utime - accepted_.back().first) > config_.reset_after_s) {
+      seconds(obs.source_utime - accepted_.back().first) > config_.reset_after_s &&
+      !odometry_covers(obs.source_utime)) {
     reset();
     model_.direction = direction_.update(obs.direction);
   }
@@ -129,8 +139,9 @@ const StairModel& Tracker::update(const Observation& obs) {
   // view) while that is fresh; attitude is the observation's own.
   auto not_registered = [&](const std::string& why) -> const StairModel& {
     if (since_accept_s > config_.lost_after_s) model_.state = TrackingState::Lost;
-    const bool predicted = obs.camera.valid && since_accept_s <= config_.predict_camera_s;
-    model_.status = predicted ? why + "; camera from the motion prior" : why;
+    const bool odometry = odometry_covers(obs.source_utime);
+    const bool predicted = obs.camera.valid && (odometry || since_accept_s <= config_.predict_camera_s);
+    model_.status = !predicted ? why : odometry ? why + "; camera from odometry" : why + "; camera from the motion prior";
     publish(obs, by_prior(prior), predicted);
     return finish();
   };
@@ -142,12 +153,15 @@ const StairModel& Tracker::update(const Observation& obs) {
     if (std::abs(wrap_angle(yaw - prior.yaw_rad)) <= config_.max_yaw_jump_deg * M_PI / 180.0) start_pose.yaw_rad = yaw;
   }
   const RegistrationInput input = registration_input(obs, config_.registration_points_per_plane);
-  const bool relocalising = since_accept_s > config_.relocalise_after_s || model_.state == TrackingState::Lost;
+  // Odometry over a gap is a better prior than a whole-step search.
+  const bool with_odometry = odometry_covers(obs.source_utime);
+  const bool relocalising =
+      !with_odometry && (since_accept_s > config_.relocalise_after_s || model_.state == TrackingState::Lost);
   Registration reg = relocalising ? relocalise(input, map_, start_pose, config_)
                                   : register_to_map(input, map_, start_pose, config_);
   // Entirely beyond the model (the next flight seen from a landing): nothing
   // to register against, so the motion prior places it while it is fresh.
-  const bool dead_reckoned = reg.within == 0 && since_accept_s <= config_.max_prediction_s;
+  const bool dead_reckoned = reg.within == 0 && (with_odometry || since_accept_s <= config_.max_prediction_s);
   if (dead_reckoned) {
     reg.pose = by_prior(start_pose);
     reg.inlier_ratio = 1.0;
@@ -179,6 +193,7 @@ const StairModel& Tracker::update(const Observation& obs) {
   merge(map_, observed_steps(obs, reg.pose), reg.pose, config_);
   reconstruct_occluded_steps(map_, config_);
   accepted_.emplace_back(obs.source_utime, reg.pose);
+  odometry_.forget_before(obs.source_utime);
   while (accepted_.size() > 2 && seconds(obs.source_utime - accepted_[1].first) >= config_.velocity_window_s)
     accepted_.pop_front();
   ++model_.observations_fused;

@@ -7,6 +7,7 @@
 #include "common/types.hpp"
 #include "tracker/config.hpp"
 #include "tracker/direction.hpp"
+#include "tracker/odometry_prior.hpp"
 #include "tracker/pose.hpp"
 #include "tracker/stair_map.hpp"
 
@@ -20,22 +21,29 @@ class Tracker {
   // Fuses one observation; observations older than the last one are dropped
   // (counted) and leave the model unchanged.
   const StairModel& update(const Observation& obs);
+  // Optional odometry (DESIGN.md odometry.txt, STAIRS_ODOMETRY): where it
+  // covers the time since the last registration it is the motion prior, the
+  // camera stays valid and the model is kept however long no stair is in view.
+  void add_odometry(const OdometrySample& o) { odometry_.add(o); }
   const StairModel& model() const { return model_; }
   void reset();
 
   int64_t dropped_out_of_order() const { return dropped_out_of_order_; }
   int64_t rejected_registrations() const { return rejected_registrations_; }
   int64_t resets() const { return resets_; }
+  int64_t dropped_odometry() const { return odometry_.dropped(); }
 
  private:
   bool seed(const Observation& obs);
   Pose4 predict(int64_t utime) const;
+  bool odometry_covers(int64_t utime) const;
   void publish(const Observation& obs, const Pose4& pose, bool camera_valid);
 
   TrackerConfig config_;
   StairMap map_;
   DirectionFilter direction_;
   StairModel model_;
+  OdometryPrior odometry_;
   std::deque<std::pair<int64_t, Pose4>> accepted_;  // recent accepted poses (utime, pose), for the velocity
   int64_t last_utime_ = 0;
   bool have_utime_ = false;

@@ -1,6 +1,7 @@
 // stairs-sim: a simulated Kinect v1 on parametric staircases with exact ground
 // truth. Publishes STAIRS_DEPTH + STAIRS_GROUND_TRUTH on LCM at the frame rate,
 // or writes an LCM log, a sequence directory or an .oni recording.
+#include "drivers/sim/odometry.hpp"
 #include "drivers/sim/render.hpp"
 #include "drivers/sim/sim_setup.hpp"
 
@@ -74,6 +75,12 @@ int run(int argc, char** argv) {
       .add("lcm-url", "URL", "LCM URL (empty = LCM's default)", "")
       .add("depth-channel", "NAME", "depth channel", "STAIRS_DEPTH")
       .add("truth-channel", "NAME", "ground-truth channel", "STAIRS_GROUND_TRUTH")
+      .add("odometry", "", "also give the camera's odometry (drifting, DESIGN.md odometry.txt): on the odometry\n"
+                           "channel, in the log, and as odometry.txt of a sequence directory")
+      .add("odometry-rate-hz", "HZ", "odometry samples per second", "100")
+      .add("odometry-channel", "NAME", "odometry channel (pose_t)", "STAIRS_ODOMETRY")
+      .add("gap", "START_S:LENGTH_S", "no depth frame in this interval of the trajectory (odometry goes on): a\n"
+                                      "camera that looks away or a dropped stream")
       .add("status-channel", "NAME", "status channel", "STAIRS_STATUS")
       .add("zlib", "LEVEL", "depth compression: 0 = raw, 1..9 = zlib", "1")
       .add("fast", "", "publish as fast as possible instead of at the frame rate")
@@ -123,6 +130,21 @@ int run(int argc, char** argv) {
   StatusReporter status(out.lcm.get(), "stairs-sim", o.get("status-channel"), o.flag("verbose"));
   install_stop_signals();
 
+  std::unique_ptr<OdometrySim> odometry;
+  if (o.flag("odometry")) {
+    if (loop) throw std::runtime_error("--odometry with --loop: odometry never jumps back, the trajectory would");
+    OdometryNoise noise;
+    noise.rate_hz = o.get_double("odometry-rate-hz");
+    if (!(noise.rate_hz > 0 && noise.rate_hz <= 1000)) throw std::runtime_error("--odometry-rate-hz must be within (0, 1000]");
+    odometry = std::make_unique<OdometrySim>(traj, noise, setup.seed);
+  }
+  double gap_start_s = 0.0, gap_length_s = 0.0;
+  if (o.has("gap")) {
+    char colon = 0, extra = 0;
+    if (std::sscanf(o.get("gap").c_str(), "%lf%c%lf%c", &gap_start_s, &colon, &gap_length_s, &extra) != 3 ||
+        colon != ':' || !(gap_start_s >= 0) || !(gap_length_s > 0))
+      throw std::runtime_error("--gap '" + o.get("gap") + "': expected START_S:LENGTH_S, e.g. 3:5");
+  }
   const GroundTruth stair = renderer.stair_truth();
   GroundTruth sequence_truth = stair;
   const bool tty = isatty(STDERR_FILENO) != 0;
@@ -130,14 +152,8 @@ int run(int argc, char** argv) {
   auto next_frame = std::chrono::steady_clock::now();
   auto last_progress = std::chrono::steady_clock::now();
   int32_t seq = 0;
-  for (int f = 0; !stop_requested(); ++f) {
-    if (f == frames) {
-      if (!loop) break;
-      f = 0;
-    }
+  const auto send_frame = [&](int f, double t_s, int64_t utime) {
     const auto t0 = std::chrono::steady_clock::now();
-    const double t_s = seq / setup.trajectory.fps;  // sequence time, continues across loops
-    const int64_t utime = publish && !to_files ? now_utime() : start_utime + std::llround(t_s * 1e6);
     const Eigen::Isometry3d T = traj.pose(f);
     const DepthImage img = renderer.render(T, utime, seq);
     GroundTruthFrame truth = renderer.truth(T, t_s, img);
@@ -160,6 +176,27 @@ int run(int argc, char** argv) {
       status.published(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       status.tick();
     }
+  };
+  for (int f = 0; !stop_requested(); ++f) {
+    if (f == frames) {
+      if (!loop) break;
+      f = 0;
+    }
+    const double t_s = seq / setup.trajectory.fps;  // sequence time, continues across loops
+    const int64_t utime = publish && !to_files ? now_utime() : start_utime + std::llround(t_s * 1e6);
+    if (odometry) {
+      const double t_traj = traj.time_s(f);
+      for (const OdometrySample& sample : odometry->until(t_traj, utime - std::llround(t_traj * 1e6))) {
+        const pose_t msg = to_lcm(sample);
+        if (out.log) out.log->write_message(o.get("odometry-channel"), sample.utime, msg);
+        if (out.seq) out.seq->write_odometry(sample);
+        if (publish) out.lcm->publish(o.get("odometry-channel"), &msg);
+      }
+    }
+    // In a gap the frame is not sent; its sequence number is skipped, so the
+    // stream shows what is missing.
+    const bool in_gap = traj.time_s(f) >= gap_start_s && traj.time_s(f) < gap_start_s + gap_length_s;
+    if (!in_gap) send_frame(f, t_s, utime);
     ++seq;
     if (to_files && (tty || o.flag("verbose")) && std::chrono::steady_clock::now() - last_progress > std::chrono::seconds(1)) {
       last_progress = std::chrono::steady_clock::now();

@@ -141,6 +141,7 @@ TEST(EvalScore, TrackedCameraAgainstTheTruth) {
   run.frames[2].tracked_steps = std::vector<Step>{};
   const Score s = run.score();
   EXPECT_EQ(s.tracked_camera_frames, 2);
+  EXPECT_EQ(s.tracked_beneath_frames, 2);
   ASSERT_TRUE(s.tracked_camera_coverage && s.tracked_step_index_accuracy);
   EXPECT_DOUBLE_EQ(*s.tracked_camera_coverage, 2.0 / 3.0);
   EXPECT_DOUBLE_EQ(*s.tracked_step_index_accuracy, 0.5);

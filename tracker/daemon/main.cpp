@@ -36,6 +36,20 @@ struct Handler {
     lcm->publish(model_channel, &out);
     status->published(model.update_latency_ms);
   }
+
+  void on_odometry(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    stairs::pose_t msg;
+    stairs::OdometrySample o;
+    std::string error;
+    if (!stairs::decode_message(rbuf->data, rbuf->data_size, msg, error) || !stairs::from_lcm(msg, o, error)) {
+      status->invalid("odometry: " + error);
+      return;
+    }
+    const int64_t dropped_before = tracker->dropped_odometry();
+    tracker->add_odometry(o);
+    if (tracker->dropped_odometry() > dropped_before)
+      status->dropped("odometry going back in time (utime " + std::to_string(o.utime) + ")");
+  }
 };
 
 }  // namespace
@@ -47,6 +61,8 @@ int main(int argc, char** argv) {
   opts.add("lcm-url", "URL", "LCM URL (empty = LCM's default)", "")
       .add("observation-channel", "NAME", "channel of stair_observation_t input", "STAIRS_OBSERVATION")
       .add("model-channel", "NAME", "channel of stair_model_t output", "STAIRS_MODEL")
+      .add("odometry-channel", "NAME", "channel of optional odometry (pose_t, bot_core.pose_t's layout)",
+           "STAIRS_ODOMETRY")
       .add("status-channel", "NAME", "channel of daemon_status_t", "STAIRS_STATUS")
       .add("config", "FILE", "tracker parameters as JSON (any subset of TrackerConfig)", "")
       .add("reset-after-s", "S", "a model lost this long is dropped when a stair is in view again (overrides --config)", "")
@@ -73,6 +89,7 @@ int main(int argc, char** argv) {
   stairs::StatusReporter status(&lcm, "stairs-tracker", opts.get("status-channel"), opts.flag("verbose"));
   Handler handler{&tracker, &lcm, &status, opts.get("model-channel")};
   lcm.subscribe(opts.get("observation-channel"), &Handler::on_observation, &handler);
+  lcm.subscribe(opts.get("odometry-channel"), &Handler::on_odometry, &handler);
   while (!stairs::stop_requested()) {
     // A stop signal interrupts the wait: that is no failure.
     if (lcm.handleTimeout(100) < 0 && !stairs::stop_requested()) {
