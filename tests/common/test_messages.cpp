@@ -157,6 +157,29 @@ TEST(Messages, ModelRoundTrip) {
   EXPECT_EQ(back.planes[0].kind, PlaneKind::Landing);
 }
 
+// STAIRS_ODOMETRY: stairs.pose_t has bot_core.pose_t's members, so its
+// fingerprint is bot_core.pose_t's (lcm-gen hashes members, not the package).
+TEST(Messages, OdometryRoundTripAndValidation) {
+  OdometrySample o;
+  o.utime = 123456;
+  o.position_m = {1.0, -2.0, 0.5};
+  o.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+  pose_t m = round_trip(to_lcm(o));
+  OdometrySample back;
+  std::string error;
+  ASSERT_TRUE(from_lcm(m, back, error)) << error;
+  EXPECT_EQ(back.utime, 123456);
+  EXPECT_NEAR((back.position_m - o.position_m).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(back.orientation.angularDistance(o.orientation), 0.0, 1e-9);
+  m.pos[1] = std::nan("");
+  EXPECT_FALSE(from_lcm(m, back, error));
+  EXPECT_NE(error.find("NaN"), std::string::npos);
+  m = to_lcm(o);
+  m.orientation[0] = 2.0;
+  EXPECT_FALSE(from_lcm(m, back, error));
+  EXPECT_NE(error.find("unit quaternion"), std::string::npos);
+}
+
 TEST(Messages, GroundTruthRoundTrip) {
   GroundTruth gt;
   gt.scene = "straight_up";

@@ -114,6 +114,44 @@ TEST(Sequence, ReadsTheRealDataDirectories) {
   }
 }
 
+// DESIGN.md odometry.txt: written by SequenceWriter, read back in order; each
+// frame of a sequence source gets the samples up to its own time.
+TEST(Sequence, OdometryRoundTrip) {
+  const fs::path dir = temp_dir("odometry");
+  SequenceWriter w(dir.string(), image(32, 24, 0).K, 0.001);
+  w.write(image(32, 24, 1000), 0.0);
+  w.write(image(32, 24, 2000), 0.1);
+  for (int i = 0; i < 3; ++i) {
+    OdometrySample o;
+    o.utime = i * 50000;
+    o.position_m = {0.1 * i, -0.2, 1.0};
+    o.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.1 * i, Eigen::Vector3d::UnitZ()));
+    w.write_odometry(o);
+  }
+  w.finish();
+  SequenceReader r(dir.string());
+  ASSERT_EQ(r.odometry().size(), 3u);
+  EXPECT_EQ(r.odometry()[2].utime, 100000);
+  EXPECT_NEAR(r.odometry()[2].position_m.x(), 0.2, 1e-6);
+  EXPECT_NEAR(r.odometry()[1].orientation.angularDistance(
+                  Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ()))),
+              0.0, 1e-6);
+  fs::remove_all(dir);
+}
+
+TEST(Sequence, MalformedOdometryNamesFileAndLine) {
+  for (const auto& [body, needle] :
+       {std::pair<std::string, std::string>{"# t x y z qw qx qy qz\n0 0 0 0 1 0 0\n", "odometry.txt:2: expected"},
+        {"0 0 0 0 1 0 0 0\n0.1 0 0 0 0.5 0 0 0\n", "odometry.txt:2: qw qx qy qz is no unit quaternion"},
+        {"0.1 0 0 0 1 0 0 0\n0.1 0 0 0 1 0 0 0\n", "odometry.txt:2: time does not increase"},
+        {"0 nan 0 0 1 0 0 0\n", "odometry.txt:1: expected"}}) {
+    const fs::path dir = write_sequence("bad_odometry");
+    std::ofstream(dir / "odometry.txt") << body;
+    expect_error(dir, needle);
+    fs::remove_all(dir);
+  }
+}
+
 TEST(Sequence, MissingCameraJson) {
   const fs::path dir = write_sequence("nocam");
   fs::remove(dir / "camera.json");

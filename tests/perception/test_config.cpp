@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -10,8 +12,10 @@
 namespace stairs {
 namespace {
 
+// One file per process: ctest runs this binary's tests side by side.
 std::string write_temp(const std::string& text) {
-  const std::string path = std::string(STAIRS_BINARY_DIR) + "/perception_config_test.json";
+  const std::string path =
+      std::string(STAIRS_BINARY_DIR) + "/perception_config_test." + std::to_string(::getpid()) + ".json";
   std::ofstream(path) << text;
   return path;
 }
