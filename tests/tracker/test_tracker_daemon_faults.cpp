@@ -1,7 +1,8 @@
 // Faults around stairs-tracker as a real subprocess over UDP multicast on
 // loopback: killed (SIGKILL) and restarted mid-stream it builds a new model from
 // the next observation; a 1.2 s gap in the observations is re-localised and an
-// out-of-order or repeated utime is dropped and counted, and it keeps publishing.
+// out-of-order or repeated utime is dropped and counted, and it keeps publishing;
+// odometry on its channel bridges a 5 s gap, and a malformed one is counted.
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/multicast.hpp"
 #include "common/lcm_bridge.hpp"
@@ -48,7 +49,8 @@ class TrackerFaults : public ::testing::Test {
   void start(std::unique_ptr<test::DaemonProcess>& d) {
     d = test::start_daemon(lcm_, status_, "stairs-tracker",
                            {"--lcm-url", kUrl, "--observation-channel", test::channel("OBS"), "--model-channel",
-                            test::channel("MODEL"), "--status-channel", test::channel("STATUS")});
+                            test::channel("MODEL"), "--status-channel", test::channel("STATUS"),
+                            "--odometry-channel", test::channel("ODOM")});
     ASSERT_TRUE(d) << "no status from the new daemon";
   }
 
@@ -60,6 +62,24 @@ class TrackerFaults : public ::testing::Test {
     lcm_.publish(test::channel("OBS"), &msg);
   }
   void send(size_t k) { send(k, static_cast<int32_t>(k), static_cast<int64_t>(k) * 33'333); }
+
+  // Odometry of walk position k: the camera's optical frame in an odometry
+  // frame turned 1 rad and shifted against the stair frame.
+  void send_odometry(size_t k) {
+    const synthetic::CameraState& c = cams_.at(k);
+    const double h = c.heading_rad, p = c.pitch_rad;
+    const Eigen::Vector3d z(std::cos(p) * std::cos(h), std::cos(p) * std::sin(h), std::sin(p));
+    const Eigen::Vector3d x(std::sin(h), -std::cos(h), 0.0);
+    Eigen::Matrix3d optical;
+    optical << x, z.cross(x), z;
+    const Eigen::AngleAxisd odometry_frame(1.0, Eigen::Vector3d::UnitZ());
+    OdometrySample o;
+    o.utime = static_cast<int64_t>(k) * 33'333;
+    o.position_m = odometry_frame * c.position_m + Eigen::Vector3d(3.0, -2.0, 0.0);
+    o.orientation = Eigen::Quaterniond(odometry_frame.toRotationMatrix() * optical);
+    const pose_t msg = to_lcm(o);
+    lcm_.publish(test::channel("ODOM"), &msg);
+  }
 
   // Walk positions [from, to), one at a time: each model arrives before the next observation goes.
   void send_and_expect(size_t from, size_t to) {
@@ -130,6 +150,44 @@ TEST_F(TrackerFaults, GapAndOutOfOrderUtimesAreHandledCountedAndItKeepsPublishin
   EXPECT_EQ(status_.last->invalid, 0);
   EXPECT_NE(status_.last->last_error.find("out-of-order"), std::string::npos) << status_.last->last_error;
   EXPECT_EQ(static_cast<int64_t>(models_.order.size()), sent - 2);
+  EXPECT_TRUE(d->stop_cleanly());
+}
+
+}  // namespace
+}  // namespace stairs
+
+namespace stairs {
+namespace {
+
+// Odometry on its channel bridges 5 s without observations: the model is kept
+// and the first observation after the gap registers to it (without odometry
+// the model is dropped and seeded again, see Tracker.EmptyObservationsLoseThenResetTheModel).
+// A malformed odometry message is counted as invalid and changes nothing.
+TEST_F(TrackerFaults, OdometryKeepsTheModelAcrossAFiveSecondGap) {
+  std::unique_ptr<test::DaemonProcess> d;
+  ASSERT_NO_FATAL_FAILURE(start(d));
+  for (size_t k = 0; k < 30; ++k) {
+    send_odometry(k);
+    ASSERT_NO_FATAL_FAILURE(send_and_expect(k, k + 1));
+  }
+  const int fused_before_gap = model(29).observations_fused;
+  for (size_t k = 30; k < 180; ++k) send_odometry(k);  // 5 s: odometry only
+  pose_t bad = to_lcm(OdometrySample{});
+  bad.orientation[0] = 3.0;
+  lcm_.publish(test::channel("ODOM"), &bad);
+  for (size_t k = 180; k < 200; ++k) {
+    send_odometry(k);
+    ASSERT_NO_FATAL_FAILURE(send_and_expect(k, k + 1));
+  }
+  EXPECT_EQ(model(180).observations_fused, fused_before_gap + 1) << model(180).status;
+  EXPECT_EQ(model(181).observations_fused, fused_before_gap + 2) << model(181).status;
+  EXPECT_EQ(model(181).status, "ok");
+  // Near the top no step is in view any more: odometry alone keeps the camera.
+  EXPECT_TRUE(model(199).camera_valid) << model(199).status;
+  EXPECT_NEAR(model(199).camera_position_m.x() - model(29).camera_position_m.x(),
+              cams_[199].position_m.x() - cams_[29].position_m.x(), 0.05);
+  ASSERT_TRUE(test::pump_until(lcm_, [&] { return status_.last->invalid == 1; }));
+  EXPECT_NE(status_.last->last_error.find("odometry"), std::string::npos) << status_.last->last_error;
   EXPECT_TRUE(d->stop_cleanly());
 }
 
