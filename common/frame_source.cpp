@@ -28,17 +28,22 @@ class SequenceSource : public FrameSource {
     f.odometry.clear();
     const auto& odometry = seq_.odometry();
     while (odom_i_ < odometry.size() && odometry[odom_i_].utime <= f.image.utime) f.odometry.push_back(odometry[odom_i_++]);
+    f.imu.clear();
+    f.imu_in_camera_frame = true;
+    const auto& imu = seq_.imu();
+    while (imu_i_ < imu.size() && imu[imu_i_].utime <= f.image.utime) f.imu.push_back(imu[imu_i_++]);
     ++i_;
     return true;
   }
   const std::optional<GroundTruth>& ground_truth() const override { return truth_; }
   double progress() const override { return seq_.size() ? double(i_) / seq_.size() : 1.0; }
   size_t size_hint() const override { return seq_.size(); }
+  std::vector<std::string> warnings() const override { return seq_.warnings(); }
 
  private:
   SequenceReader seq_;
   std::optional<GroundTruth> truth_;
-  size_t i_ = 0, odom_i_ = 0;
+  size_t i_ = 0, odom_i_ = 0, imu_i_ = 0;
 };
 
 // Ground truth may be logged before or after its depth frame; frames are
@@ -46,17 +51,20 @@ class SequenceSource : public FrameSource {
 class LogSource : public FrameSource {
  public:
   LogSource(const std::string& path, std::string depth_channel, std::string truth_channel,
-            std::string odometry_channel)
+            std::string odometry_channel, std::string imu_channel)
       : log_(path),
         depth_channel_(std::move(depth_channel)),
         truth_channel_(std::move(truth_channel)),
-        odometry_channel_(std::move(odometry_channel)) {}
+        odometry_channel_(std::move(odometry_channel)),
+        imu_channel_(std::move(imu_channel)) {}
 
   bool next(SourceFrame& f) override {
     while (pending_.size() < 2 && !eof_) read_one();
     if (pending_.empty()) return false;
-    f.image = std::move(pending_.front().first);
-    f.odometry = std::move(pending_.front().second);
+    f.image = std::move(pending_.front().image);
+    f.odometry = std::move(pending_.front().odometry);
+    f.imu = std::move(pending_.front().imu);
+    f.imu_in_camera_frame = false;
     pending_.pop_front();
     f.truth.reset();
     if (auto it = truth_by_seq_.find(f.image.seq); it != truth_by_seq_.end()) {
@@ -85,8 +93,9 @@ class LogSource : public FrameSource {
       depth_frame_t msg;
       DepthImage img;
       if (decode_message(ev.data.data(), ev.data.size(), msg, error) && from_lcm(msg, img, error)) {
-        pending_.emplace_back(std::move(img), std::move(odometry_));
+        pending_.push_back({std::move(img), std::move(odometry_), std::move(imu_)});
         odometry_.clear();
+        imu_.clear();
         return;
       }
       ++invalid_;
@@ -95,10 +104,18 @@ class LogSource : public FrameSource {
       pose_t msg;
       OdometrySample o;
       if (decode_message(ev.data.data(), ev.data.size(), msg, error) && from_lcm(msg, o, error)) {
-        // At most one frame period of samples is held: a log of odometry
-        // without depth cannot grow this without bound.
-        if (odometry_.size() >= kMaxOdometryPerFrame) odometry_.erase(odometry_.begin());
+        if (odometry_.size() >= kMaxSamplesPerFrame) odometry_.erase(odometry_.begin());
         odometry_.push_back(o);
+        return;
+      }
+      ++invalid_;
+      last_error_ = log_.path() + ": " + ev.channel + " message skipped: " + error;
+    } else if (ev.channel == imu_channel_) {
+      imu_t msg;
+      ImuSample sample;
+      if (decode_message(ev.data.data(), ev.data.size(), msg, error) && from_lcm(msg, sample, error)) {
+        if (imu_.size() >= kMaxSamplesPerFrame) imu_.erase(imu_.begin());
+        imu_.push_back(sample);
         return;
       }
       ++invalid_;
@@ -117,12 +134,20 @@ class LogSource : public FrameSource {
     }
   }
 
-  static constexpr size_t kMaxOdometryPerFrame = 1000;  // 1 kHz odometry, a 1 s gap between frames
+  // Odometry or IMU samples held per frame (1 kHz over a 1 s gap between frames):
+  // a log of them without depth cannot grow this without bound; the oldest go.
+  static constexpr size_t kMaxSamplesPerFrame = 1000;
+  struct Pending {
+    DepthImage image;
+    std::vector<OdometrySample> odometry;
+    std::vector<ImuSample> imu;
+  };
 
   LogReader log_;
-  std::string depth_channel_, truth_channel_, odometry_channel_;
-  std::deque<std::pair<DepthImage, std::vector<OdometrySample>>> pending_;
+  std::string depth_channel_, truth_channel_, odometry_channel_, imu_channel_;
+  std::deque<Pending> pending_;
   std::vector<OdometrySample> odometry_;  // since the last depth frame
+  std::vector<ImuSample> imu_;
   std::map<int32_t, GroundTruthFrame> truth_by_seq_;
   std::optional<GroundTruth> truth_;
   bool eof_ = false;
@@ -133,9 +158,10 @@ class LogSource : public FrameSource {
 }  // namespace
 
 std::unique_ptr<FrameSource> open_frame_source(const std::string& path, const std::string& depth_channel,
-                                               const std::string& truth_channel, const std::string& odometry_channel) {
+                                               const std::string& truth_channel, const std::string& odometry_channel,
+                                               const std::string& imu_channel) {
   if (std::filesystem::is_directory(path)) return std::make_unique<SequenceSource>(path);
-  return std::make_unique<LogSource>(path, depth_channel, truth_channel, odometry_channel);
+  return std::make_unique<LogSource>(path, depth_channel, truth_channel, odometry_channel, imu_channel);
 }
 
 }  // namespace stairs

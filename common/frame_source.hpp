@@ -17,6 +17,10 @@ struct SourceFrame {
   // Odometry that arrived since the previous frame (a sequence: timestamps up
   // to this frame's), in order; empty without odometry.
   std::vector<OdometrySample> odometry;
+  // IMU samples likewise; a sequence's imu.txt is in the camera optical frame,
+  // a log's STAIRS_IMU in the IMU's own (perception's imu_to_camera turns it).
+  std::vector<ImuSample> imu;
+  bool imu_in_camera_frame = true;
 };
 
 class FrameSource {
@@ -32,12 +36,15 @@ class FrameSource {
   // Depth messages skipped because they failed validation, with the last reason.
   virtual size_t invalid() const { return 0; }
   virtual std::string last_error() const { return {}; }
+  // Optional inputs left out, each "FILE[:LINE]: reason".
+  virtual std::vector<std::string> warnings() const { return {}; }
 };
 
 // A directory is read as a sequence, a file as an LCM log.
 std::unique_ptr<FrameSource> open_frame_source(const std::string& path,
                                                const std::string& depth_channel = "STAIRS_DEPTH",
                                                const std::string& truth_channel = "STAIRS_GROUND_TRUTH",
-                                               const std::string& odometry_channel = "STAIRS_ODOMETRY");
+                                               const std::string& odometry_channel = "STAIRS_ODOMETRY",
+                                               const std::string& imu_channel = "STAIRS_IMU");
 
 }  // namespace stairs

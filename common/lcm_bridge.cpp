@@ -99,6 +99,7 @@ STAIRS_INSTANTIATE(stair_model_t)
 STAIRS_INSTANTIATE(ground_truth_t)
 STAIRS_INSTANTIATE(daemon_status_t)
 STAIRS_INSTANTIATE(pose_t)
+STAIRS_INSTANTIATE(imu_t)
 #undef STAIRS_INSTANTIATE
 
 // --- odometry -----------------------------------------------------------------
@@ -126,6 +127,28 @@ bool from_lcm(const pose_t& m, OdometrySample& o, std::string& error) {
   o.utime = m.utime;
   o.position_m = Eigen::Vector3d(m.pos[0], m.pos[1], m.pos[2]);
   o.orientation = q.normalized();
+  return true;
+}
+
+// --- inertial -----------------------------------------------------------------
+
+imu_t to_lcm(const ImuSample& s) {
+  imu_t m{};
+  m.utime = s.utime;
+  for (int i = 0; i < 3; ++i) {
+    m.specific_force_mps2[i] = s.specific_force_mps2[i];
+    m.angular_rate_radps[i] = s.angular_rate_radps[i];
+  }
+  return m;
+}
+
+bool from_lcm(const imu_t& m, ImuSample& s, std::string& error) {
+  bool finite = true;
+  for (int i = 0; i < 3; ++i) finite = finite && std::isfinite(m.specific_force_mps2[i]) && std::isfinite(m.angular_rate_radps[i]);
+  if (!finite) return error = "IMU sample with NaN/inf", false;
+  s.utime = m.utime;
+  s.specific_force_mps2 = Eigen::Vector3d(m.specific_force_mps2[0], m.specific_force_mps2[1], m.specific_force_mps2[2]);
+  s.angular_rate_radps = Eigen::Vector3d(m.angular_rate_radps[0], m.angular_rate_radps[1], m.angular_rate_radps[2]);
   return true;
 }
 

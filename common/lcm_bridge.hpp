@@ -8,6 +8,7 @@
 #include <stairs/daemon_status_t.hpp>
 #include <stairs/depth_frame_t.hpp>
 #include <stairs/ground_truth_t.hpp>
+#include <stairs/imu_t.hpp>
 #include <stairs/pose_t.hpp>
 #include <stairs/stair_model_t.hpp>
 #include <stairs/stair_observation_t.hpp>
@@ -51,6 +52,11 @@ bool from_lcm(const ground_truth_t& msg, GroundTruth& gt, GroundTruthFrame& fram
 pose_t to_lcm(const OdometrySample& o);
 // Rejects non-finite values and an orientation whose norm is off 1 by more than 1e-3.
 bool from_lcm(const pose_t& msg, OdometrySample& o, std::string& error);
+
+// --- inertial -------------------------------------------------------------------
+imu_t to_lcm(const ImuSample& s);
+// Rejects non-finite values.
+bool from_lcm(const imu_t& msg, ImuSample& s, std::string& error);
 
 step_t to_lcm(const Step& s);
 Step from_lcm(const step_t& s);

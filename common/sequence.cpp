@@ -42,8 +42,42 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
 
   const std::string gt = (fs::path(dir) / "groundtruth.json").string();
   if (fs::exists(gt)) ground_truth_ = ground_truth_from_json(read_json_file(gt), gt);
-  const std::string odometry = (fs::path(dir) / "odometry.txt").string();
-  if (fs::exists(odometry)) odometry_ = read_odometry_file(odometry);
+  const auto optional_file = [&](const char* name, auto read, auto& out) {
+    const std::string path = (fs::path(dir) / name).string();
+    if (!fs::exists(path)) return;
+    try {
+      out = read(path);
+    } catch (const std::runtime_error& e) {
+      warnings_.push_back(std::string(e.what()) + " (" + name + " left out)");
+    }
+  };
+  optional_file("odometry.txt", read_odometry_file, odometry_);
+  optional_file("imu.txt", read_imu_file, imu_);
+}
+
+std::vector<ImuSample> read_imu_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": unreadable");
+  std::vector<ImuSample> out;
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    const std::string where = path + ":" + std::to_string(line_no) + ": ";
+    std::istringstream ls(line);
+    double t, v[6];
+    if (!(ls >> t >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5]))
+      throw std::runtime_error(where + "expected '<timestamp_s> ax ay az gx gy gz' (finite numbers)");
+    ImuSample s;
+    s.utime = static_cast<int64_t>(t * 1e6 + (t >= 0 ? 0.5 : -0.5));
+    s.specific_force_mps2 = Eigen::Vector3d(v[0], v[1], v[2]);
+    s.angular_rate_radps = Eigen::Vector3d(v[3], v[4], v[5]);
+    if (!out.empty() && s.utime <= out.back().utime) throw std::runtime_error(where + "time does not increase");
+    out.push_back(s);
+  }
+  return out;
 }
 
 std::vector<OdometrySample> read_odometry_file(const std::string& path) {
@@ -104,6 +138,7 @@ SequenceWriter::SequenceWriter(const std::string& dir, const Intrinsics& K, doub
   // A stale index from an earlier run would make this one look complete early.
   fs::remove(fs::path(dir) / "depth.txt");
   fs::remove(fs::path(dir) / "odometry.txt");
+  fs::remove(fs::path(dir) / "imu.txt");
   index_ = "# depth maps: uint16 PNG, depth along the optical axis, 0 = no measurement\n"
            "# timestamp filename\n";
 }
@@ -131,9 +166,19 @@ void SequenceWriter::write_odometry(const OdometrySample& o) {
   odometry_ += line;
 }
 
+void SequenceWriter::write_imu(const ImuSample& s) {
+  if (imu_.empty()) imu_ = "# specific force (m/s^2) and angular rate (rad/s) in the camera optical frame\n# timestamp_s ax ay az gx gy gz\n";
+  char line[224];
+  std::snprintf(line, sizeof(line), "%.6f %.6f %.6f %.6f %.7f %.7f %.7f\n", s.utime * 1e-6, s.specific_force_mps2.x(),
+                s.specific_force_mps2.y(), s.specific_force_mps2.z(), s.angular_rate_radps.x(),
+                s.angular_rate_radps.y(), s.angular_rate_radps.z());
+  imu_ += line;
+}
+
 void SequenceWriter::finish(const std::optional<GroundTruth>& ground_truth) {
   write_json_file((fs::path(dir_) / "camera.json").string(), to_json(K_, depth_scale_));
   if (!odometry_.empty()) write_file_atomically((fs::path(dir_) / "odometry.txt").string(), odometry_);
+  if (!imu_.empty()) write_file_atomically((fs::path(dir_) / "imu.txt").string(), imu_);
   if (ground_truth) write_json_file((fs::path(dir_) / "groundtruth.json").string(), to_json(*ground_truth));
   write_file_atomically((fs::path(dir_) / "depth.txt").string(), index_);
 }

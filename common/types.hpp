@@ -161,6 +161,14 @@ struct OdometrySample {
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // optical -> odometry
 };
 
+// One inertial sample (DESIGN.md imu.txt, channel STAIRS_IMU), in the camera
+// optical frame once perception has applied its imu_to_camera rotation.
+struct ImuSample {
+  int64_t utime = 0;                                        // us
+  Eigen::Vector3d specific_force_mps2 = Eigen::Vector3d::Zero();  // at rest +9.81 along up
+  Eigen::Vector3d angular_rate_radps = Eigen::Vector3d::Zero();
+};
+
 // Ground truth of one frame (groundtruth.json "frames" / ground_truth_t).
 struct GroundTruthFrame {
   double timestamp = 0.0;  // s

@@ -42,6 +42,26 @@ struct VerificationConfig {
   float min_run_m = 0.138f;           // m; a shorter measured run is no tread (DIN's 0.23 m less its tolerance)
 };
 
+// --- imu (perception/imu_gravity.hpp): gravity from an optional IMU (issue 15)
+struct ImuConfig {
+  // IMU frame -> camera optical frame, applied to the live channel and logged
+  // STAIRS_IMU (a sequence's imu.txt is already in the camera frame):
+  // R = Rz(yaw) Ry(pitch) Rx(roll).
+  float to_camera_roll_deg = 0.0f;
+  float to_camera_pitch_deg = 0.0f;
+  float to_camera_yaw_deg = 0.0f;
+  float time_constant_s = 1.0f;      // s; accelerometer correction of the gyro-propagated up: walking
+                                     // accelerations (~2 Hz) average out, gyro bias cannot build up
+  float max_force_deviation = 0.2f;  // of g; no start from a force this far off 1 g, and no correction from
+                                     // one twice this far from the filtered gravity (a jolt, a bump)
+  float max_age_s = 0.1f;            // s; IMU data this much older than a frame is stale: planes only
+  float warmup_s = 0.5f;             // s; of samples before the filter's up is used (it starts on one sample)
+  float plane_agreement_deg = 2.0f;  // deg; planes' up within this of the IMU's is kept: level floors and
+                                     // treads measure it better than a walking IMU
+  float max_disagreement_deg = 10.0f;  // deg; an IMU farther than this from the planes is rejected (a
+                                       // wrong mount rotation, a broken IMU): no ramp people walk is steeper
+};
+
 struct PerceptionConfig {
   // --- normals: organized grid of cell means, normals by neighbour cross products
   int grid_cell_px = 4;            // px at 640 wide; cell side (scaled, >= 1)
@@ -121,6 +141,8 @@ struct PerceptionConfig {
   float step_rule_min_m = 0.59f;      // 2R + T lower bound
   float step_rule_max_m = 0.65f;      // 2R + T upper bound
   float din_tolerance = 0.4f;         // relative tolerance on every DIN bound
+  float level_max_spread_of_rise = 0.5f;  // of the rise: a level's heights reach at most this far towards
+                                          // the next (a tread is level within noise; a ramp is not)
   float landing_min_depth_m = 0.50f;  // a tread deeper than this is a landing
   float min_step_width_m = 0.3f;      // m; narrower horizontal planes (chair seats) are no treads
   float max_lateral_gap_m = 0.5f;     // m; consecutive treads must overlap laterally up to this gap
@@ -130,6 +152,8 @@ struct PerceptionConfig {
 
   // --- verification: JSON object "verification" with the keys of VerificationConfig
   VerificationConfig verification;
+  // --- imu: JSON object "imu" with the keys of ImuConfig
+  ImuConfig imu;
 
   // --- observation
   int max_sample_points = 1024;  // per tread/riser, spatially even grid subsample

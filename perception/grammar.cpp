@@ -36,6 +36,13 @@ std::optional<double> successor(const Level& a, const Level& b, Direction dir, s
   if (dir == Direction::Down && (a.riser_top || b.riser_top)) return std::nullopt;
   const float rise = dir == Direction::Up ? b.z - a.z : a.z - b.z;
   if (!din_riser_ok(rise, c) || !laterally_overlapping(a, b, c)) return std::nullopt;
+  // A step rises above the whole of the level below it: a tread is level
+  // within noise, a slope (a ramp cut into patches) rises through the height
+  // of the next "step" by itself.
+  const Level& lower = dir == Direction::Up ? a : b;
+  const Level& upper = dir == Direction::Up ? b : a;
+  const float spread = c.level_max_spread_of_rise * rise;
+  if (lower.reach_above_m > spread || upper.reach_below_m > spread) return std::nullopt;
   double dev = deviation(rise, c.riser_min_m, c.riser_max_m);
   constexpr float kAdjacent_m = 0.3f;   // a level ends where the next riser starts
   if (dir == Direction::Up) {

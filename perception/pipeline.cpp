@@ -47,7 +47,7 @@ bool usable(const DepthImage& f, std::string& why) {
 
 }  // namespace
 
-Pipeline::Pipeline(PerceptionConfig cfg) : cfg_(cfg) {}
+Pipeline::Pipeline(PerceptionConfig cfg) : cfg_(cfg), imu_(cfg_.imu) {}
 
 Observation Pipeline::process(const DepthImage& frame) {
   Observation obs;
@@ -64,11 +64,13 @@ Observation Pipeline::process(const DepthImage& frame) {
   clock.mark("region_growing");
   const int64_t gap_us = frame.utime - prior_utime_;
   if (gap_us < 0 || gap_us > cfg_.gravity_prior_max_gap_s * 1e6) up_prior_.reset();
-  const auto up = estimate_up(segments, cfg_, up_prior_);
-  if (up) {
-    up_prior_ = up;
+  const std::optional<Eigen::Vector3f> planes_up = estimate_up(segments, cfg_, up_prior_);
+  if (planes_up) {
+    up_prior_ = planes_up;
     prior_utime_ = frame.utime;
   }
+  const FusedUp fused = fuse_up(planes_up, imu_.up_at(frame.utime), cfg_.imu);
+  const auto& up = fused.up;
   clock.mark("gravity");
   if (!up) {
     obs.status = "no horizontal plane: pose unknown";
@@ -109,6 +111,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   } else {
     obs.status = refuted.empty() ? "no staircase" : "no staircase: verification: " + refuted;
   }
+  if (!fused.note.empty()) obs.status += "; " + fused.note;
   obs.planes = std::move(ps.planes);
   for (const JumpEdge& j : jump_edges) obs.edges.push_back(j.edge);
   obs.edges.insert(obs.edges.end(), normal_edges.begin(), normal_edges.end());

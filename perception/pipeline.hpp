@@ -4,6 +4,7 @@
 
 #include "common/types.hpp"
 #include "perception/config.hpp"
+#include "perception/imu_gravity.hpp"
 #include "perception/normals.hpp"
 
 #include <optional>
@@ -20,6 +21,11 @@ class Pipeline {
   // gravity prior.
   Observation process(const DepthImage& frame);
   const PerceptionConfig& config() const { return cfg_; }
+  // Optional IMU samples in the camera optical frame (imu_to_camera applied),
+  // in time order, before the frames they precede: where fresh, its gravity
+  // is fused with the planes' (perception/imu_gravity.hpp).
+  void add_imu(const ImuSample& s) { imu_.add(s); }
+  int64_t dropped_imu() const { return imu_.dropped(); }
 
  private:
   PerceptionConfig cfg_;
@@ -27,6 +33,7 @@ class Pipeline {
   std::vector<int> labels_;  // reused buffers
   std::optional<Eigen::Vector3f> up_prior_;  // optical frame, of the frame at prior_utime_
   int64_t prior_utime_ = 0;
+  ImuGravity imu_;
 };
 
 }  // namespace stairs

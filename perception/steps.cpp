@@ -40,6 +40,12 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
     }
     if (!seen) levels.push_back({-1, j.z, j.s, j.s, j.t_min, j.t_max, true});
   }
+  for (Level& l : levels) {
+    if (l.plane < 0) continue;
+    const PlaneExtent& e = ps.extents[static_cast<size_t>(l.plane)];
+    l.reach_below_m = std::max(0.0f, l.z - e.z_min);
+    l.reach_above_m = std::max(0.0f, e.z_max - l.z);
+  }
   std::sort(levels.begin(), levels.end(), [](const Level& a, const Level& b) { return a.z < b.z; });
   return levels;
 }

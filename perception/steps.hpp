@@ -14,6 +14,9 @@ struct Level {
   float z = 0, s_min = 0, s_max = 0, t_min = 0, t_max = 0;
   bool far_edge = false;    // a depth-jump edge ends it (its nosing, seen from above)
   bool riser_top = false;   // the top of a riser facing the camera (a tread seen edge-on)
+  // How far its plane's heights (trimmed percentiles) reach below and above z;
+  // 0 for an edge's level.
+  float reach_below_m = 0, reach_above_m = 0;
 };
 
 // Levels of the tread planes, of the tops of risers and of the depth-jump

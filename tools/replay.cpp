@@ -3,6 +3,7 @@
 #include "common/frame_source.hpp"
 #include "common/json_io.hpp"
 #include "perception/config.hpp"
+#include "perception/imu_gravity.hpp"
 #include "perception/pipeline.hpp"
 #include "tools/downsample.hpp"
 #include "tracker/config.hpp"
@@ -97,7 +98,9 @@ RunResult replay(const std::string& input, const ReplayOptions& options, const F
     tracker_config = load_section<TrackerConfig>(all, "tracker", options.config_path, load_tracker_config);
   }
   auto source = open_frame_source(input);
+  for (const std::string& w : source->warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
   Pipeline pipeline(perception_config);
+  const Eigen::Matrix3d imu_rotation = imu_to_camera(perception_config.imu);
   Tracker tracker(tracker_config);
   ProgressBar bar(options.progress);
 
@@ -114,6 +117,13 @@ RunResult replay(const std::string& input, const ReplayOptions& options, const F
     if (hook) hook(image);
 
     for (const OdometrySample& o : sf.odometry) tracker.add_odometry(o);
+    for (ImuSample s : sf.imu) {
+      if (!sf.imu_in_camera_frame) {
+        s.specific_force_mps2 = imu_rotation * s.specific_force_mps2;
+        s.angular_rate_radps = imu_rotation * s.angular_rate_radps;
+      }
+      pipeline.add_imu(s);
+    }
     const auto t0 = Clock::now();
     Observation obs = pipeline.process(image);
     const auto t1 = Clock::now();

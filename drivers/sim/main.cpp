@@ -1,6 +1,7 @@
 // stairs-sim: a simulated Kinect v1 on parametric staircases with exact ground
 // truth. Publishes STAIRS_DEPTH + STAIRS_GROUND_TRUTH on LCM at the frame rate,
 // or writes an LCM log, a sequence directory or an .oni recording.
+#include "drivers/sim/imu.hpp"
 #include "drivers/sim/odometry.hpp"
 #include "drivers/sim/render.hpp"
 #include "drivers/sim/sim_setup.hpp"
@@ -79,6 +80,10 @@ int run(int argc, char** argv) {
                            "channel, in the log, and as odometry.txt of a sequence directory")
       .add("odometry-rate-hz", "HZ", "odometry samples per second", "100")
       .add("odometry-channel", "NAME", "odometry channel (pose_t)", "STAIRS_ODOMETRY")
+      .add("imu", "", "also give an IMU aligned with the camera (specific force, angular rate, bias and\n"
+                      "noise; DESIGN.md imu.txt): on the IMU channel, in the log, and as imu.txt")
+      .add("imu-rate-hz", "HZ", "IMU samples per second", "200")
+      .add("imu-channel", "NAME", "IMU channel (imu_t)", "STAIRS_IMU")
       .add("gap", "START_S:LENGTH_S", "no depth frame in this interval of the trajectory (odometry goes on): a\n"
                                       "camera that looks away or a dropped stream")
       .add("status-channel", "NAME", "status channel", "STAIRS_STATUS")
@@ -138,6 +143,14 @@ int run(int argc, char** argv) {
     if (!(noise.rate_hz > 0 && noise.rate_hz <= 1000)) throw std::runtime_error("--odometry-rate-hz must be within (0, 1000]");
     odometry = std::make_unique<OdometrySim>(traj, noise, setup.seed);
   }
+  std::unique_ptr<ImuSim> imu;
+  if (o.flag("imu")) {
+    if (loop) throw std::runtime_error("--imu with --loop: the trajectory would jump back");
+    ImuNoise noise;
+    noise.rate_hz = o.get_double("imu-rate-hz");
+    if (!(noise.rate_hz > 0 && noise.rate_hz <= 2000)) throw std::runtime_error("--imu-rate-hz must be within (0, 2000]");
+    imu = std::make_unique<ImuSim>(traj, noise, setup.seed);
+  }
   double gap_start_s = 0.0, gap_length_s = 0.0;
   if (o.has("gap")) {
     char colon = 0, extra = 0;
@@ -191,6 +204,15 @@ int run(int argc, char** argv) {
         if (out.log) out.log->write_message(o.get("odometry-channel"), sample.utime, msg);
         if (out.seq) out.seq->write_odometry(sample);
         if (publish) out.lcm->publish(o.get("odometry-channel"), &msg);
+      }
+    }
+    if (imu) {
+      const double t_traj = traj.time_s(f);
+      for (const ImuSample& sample : imu->until(t_traj, utime - std::llround(t_traj * 1e6))) {
+        const imu_t msg = to_lcm(sample);
+        if (out.log) out.log->write_message(o.get("imu-channel"), sample.utime, msg);
+        if (out.seq) out.seq->write_imu(sample);
+        if (publish) out.lcm->publish(o.get("imu-channel"), &msg);
       }
     }
     // In a gap the frame is not sent; its sequence number is skipped, so the

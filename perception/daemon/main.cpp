@@ -9,13 +9,51 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include <iostream>
+#include <mutex>
 #include <thread>
+#include <utility>
+#include <vector>
 
 namespace {
+
+// IMU samples from the receive thread to the worker, which feeds them to the
+// pipeline before each frame. Capped: a worker that stalls drops the oldest.
+class ImuQueue {
+ public:
+  static constexpr size_t kCap = 4096;  // 10 s at 400 Hz
+  void push(const stairs::ImuSample& s) {
+    std::lock_guard<std::mutex> lock(m_);
+    if (samples_.size() >= kCap) samples_.erase(samples_.begin());
+    samples_.push_back(s);
+  }
+  std::vector<stairs::ImuSample> take() {
+    std::lock_guard<std::mutex> lock(m_);
+    return std::exchange(samples_, {});
+  }
+
+ private:
+  std::mutex m_;
+  std::vector<stairs::ImuSample> samples_;
+};
 
 struct Receiver {
   stairs::LatestSlot<stairs::DepthImage>* slot;
   stairs::StatusReporter* status;
+  ImuQueue* imu;
+  Eigen::Matrix3d imu_to_camera;
+
+  void on_imu(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    stairs::imu_t msg;
+    stairs::ImuSample s;
+    std::string error;
+    if (!stairs::decode_message(rbuf->data, rbuf->data_size, msg, error) || !stairs::from_lcm(msg, s, error)) {
+      status->invalid("IMU: " + error);
+      return;
+    }
+    s.specific_force_mps2 = imu_to_camera * s.specific_force_mps2;
+    s.angular_rate_radps = imu_to_camera * s.angular_rate_radps;
+    imu->push(s);
+  }
 
   void on_depth(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     status->received();
@@ -40,6 +78,8 @@ int main(int argc, char** argv) {
       .add("depth-channel", "NAME", "channel of depth_frame_t input", "STAIRS_DEPTH")
       .add("observation-channel", "NAME", "channel of stair_observation_t output", "STAIRS_OBSERVATION")
       .add("status-channel", "NAME", "channel of daemon_status_t", "STAIRS_STATUS")
+      .add("imu-channel", "NAME", "channel of optional IMU samples (imu_t; config imu.to_camera_* turns them)",
+           "STAIRS_IMU")
       .add("config", "FILE", "perception parameters as JSON (any subset of PerceptionConfig)", "")
       .add("verbose", "", "print the status line once a second even without a terminal");
   opts.parse(argc, argv);
@@ -59,8 +99,10 @@ int main(int argc, char** argv) {
   stairs::install_stop_signals();
   stairs::StatusReporter status(&lcm, "stairs-perception", opts.get("status-channel"), opts.flag("verbose"));
   stairs::LatestSlot<stairs::DepthImage> slot;
-  Receiver receiver{&slot, &status};
+  ImuQueue imu;
+  Receiver receiver{&slot, &status, &imu, stairs::imu_to_camera(config.imu)};
   lcm.subscribe(opts.get("depth-channel"), &Receiver::on_depth, &receiver);
+  lcm.subscribe(opts.get("imu-channel"), &Receiver::on_imu, &receiver);
 
   const std::string out_channel = opts.get("observation-channel");
   std::thread worker([&] {
@@ -68,6 +110,7 @@ int main(int argc, char** argv) {
     while (!stairs::stop_requested()) {
       auto frame = slot.take(std::chrono::milliseconds(100));
       if (!frame) continue;
+      for (const stairs::ImuSample& s : imu.take()) pipeline.add_imu(s);
       const stairs::Observation obs = pipeline.process(*frame);
       const stairs::stair_observation_t msg = stairs::to_lcm(obs, stairs::now_utime());
       lcm.publish(out_channel, &msg);

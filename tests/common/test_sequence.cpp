@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 
 using namespace stairs;
 namespace fs = std::filesystem;
@@ -139,15 +140,24 @@ TEST(Sequence, OdometryRoundTrip) {
   fs::remove_all(dir);
 }
 
-TEST(Sequence, MalformedOdometryNamesFileAndLine) {
-  for (const auto& [body, needle] :
-       {std::pair<std::string, std::string>{"# t x y z qw qx qy qz\n0 0 0 0 1 0 0\n", "odometry.txt:2: expected"},
-        {"0 0 0 0 1 0 0 0\n0.1 0 0 0 0.5 0 0 0\n", "odometry.txt:2: qw qx qy qz is no unit quaternion"},
-        {"0.1 0 0 0 1 0 0 0\n0.1 0 0 0 1 0 0 0\n", "odometry.txt:2: time does not increase"},
-        {"0 nan 0 0 1 0 0 0\n", "odometry.txt:1: expected"}}) {
-    const fs::path dir = write_sequence("bad_odometry");
-    std::ofstream(dir / "odometry.txt") << body;
-    expect_error(dir, needle);
+// A malformed optional file leaves the sequence readable without it, with a
+// warning naming the file and the line.
+TEST(Sequence, MalformedOdometryOrImuIsLeftOutWithAWarning) {
+  for (const auto& [file, body, needle] :
+       {std::tuple<std::string, std::string, std::string>{"odometry.txt", "# t x y z qw qx qy qz\n0 0 0 0 1 0 0\n",
+                                                          "odometry.txt:2: expected"},
+        {"odometry.txt", "0 0 0 0 1 0 0 0\n0.1 0 0 0 0.5 0 0 0\n", "odometry.txt:2: qw qx qy qz is no unit quaternion"},
+        {"odometry.txt", "0.1 0 0 0 1 0 0 0\n0.1 0 0 0 1 0 0 0\n", "odometry.txt:2: time does not increase"},
+        {"odometry.txt", "0 nan 0 0 1 0 0 0\n", "odometry.txt:1: expected"},
+        {"imu.txt", "# raw\n[2018-4-13]\n1,2,3\n", "imu.txt:2: expected"},
+        {"imu.txt", "0.1 0 0 9.8 0 0 0\n0.05 0 0 9.8 0 0 0\n", "imu.txt:2: time does not increase"}}) {
+    const fs::path dir = write_sequence("bad_optional");
+    std::ofstream(dir / file) << body;
+    SequenceReader r(dir.string());
+    EXPECT_EQ(r.size(), 2u);
+    EXPECT_TRUE(r.odometry().empty() && r.imu().empty());
+    ASSERT_EQ(r.warnings().size(), 1u) << needle;
+    EXPECT_NE(r.warnings()[0].find(needle), std::string::npos) << r.warnings()[0];
     fs::remove_all(dir);
   }
 }

@@ -38,6 +38,18 @@ TEST(PerceptionGrammar, AscendingChainFromTheFloor) {
   EXPECT_EQ(ch.steps(), 3);
 }
 
+// A ramp cut into patches: each patch's heights reach most of the way to the
+// next, so no patch is a level a step rises from (the same heights as flat
+// levels make a flight).
+TEST(PerceptionGrammar, LevelsThatRiseThroughTheRiseAreNoSteps) {
+  std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), level(-0.83f, 1.5f, 1.78f), level(-0.66f, 1.78f, 2.06f),
+                               level(-0.49f, 2.06f, 2.2f)};
+  for (Level& l : levels) l.reach_above_m = l.reach_below_m = 0.06f;  // within noise of a 0.17 m rise
+  EXPECT_EQ(best_chain(levels, PerceptionConfig{}).steps(), 3);
+  for (Level& l : levels) l.reach_above_m = l.reach_below_m = 0.1f;  // a slope: more than half the rise
+  EXPECT_EQ(best_chain(levels, PerceptionConfig{}).steps(), 0);
+}
+
 TEST(PerceptionGrammar, DescendingChainFromTheLanding) {
   // Going down each lower tread is seen beyond the nosing above it.
   const std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), level(-1.17f, 1.6f, 1.78f), level(-1.34f, 1.9f, 2.06f),

@@ -1,0 +1,52 @@
+#include "drivers/sim/imu.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stairs::sim {
+
+namespace {
+constexpr double kGravity_mps2 = 9.80665;  // standard gravity
+constexpr double kDifference_s = 0.002;    // s; step of the finite differences of the trajectory
+}  // namespace
+
+ImuSim::ImuSim(const Trajectory& trajectory, const ImuNoise& noise, uint64_t seed)
+    : trajectory_(trajectory), noise_(noise), rng_(seed ^ 0x696d7573616d706cULL) {
+  for (int i = 0; i < 3; ++i) {
+    accel_bias_[i] = noise_.accel_bias_mps2 * (2.0 * rng_.uniform() - 1.0);
+    gyro_bias_[i] = noise_.gyro_bias_radps * (2.0 * rng_.uniform() - 1.0);
+  }
+}
+
+ImuSample ImuSim::measure(double t) {
+  const double h = kDifference_s;
+  // The walk starts at t = 0: no differences reach before it (one-sided there).
+  const double m = std::max(t, h);
+  const Eigen::Isometry3d a = trajectory_.pose_at(m - h), b = trajectory_.pose_at(m), c = trajectory_.pose_at(m + h);
+  // Motion acceleration (stair frame), then the specific force the
+  // accelerometer feels: acceleration minus gravity, in the optical frame.
+  const Eigen::Vector3d accel = (c.translation() - 2.0 * b.translation() + a.translation()) / (h * h);
+  const Eigen::Vector3d force = b.linear().transpose() * (accel + Eigen::Vector3d(0, 0, kGravity_mps2));
+  // Body angular rate from the relative rotation over the central difference.
+  const Eigen::AngleAxisd turn(a.linear().transpose() * c.linear());
+  const Eigen::Vector3d rate = turn.axis() * turn.angle() / (2.0 * h);
+  ImuSample s;
+  s.specific_force_mps2 = force + accel_bias_ +
+                          noise_.accel_noise_mps2 * Eigen::Vector3d(rng_.gaussian(), rng_.gaussian(), rng_.gaussian());
+  s.angular_rate_radps = rate + gyro_bias_ +
+                         noise_.gyro_noise_radps * Eigen::Vector3d(rng_.gaussian(), rng_.gaussian(), rng_.gaussian());
+  return s;
+}
+
+std::vector<ImuSample> ImuSim::until(double t_s, int64_t utime0) {
+  std::vector<ImuSample> out;
+  for (; next_ / noise_.rate_hz <= t_s + 1e-9; ++next_) {
+    const double t = next_ / noise_.rate_hz;
+    ImuSample s = measure(t);
+    s.utime = utime0 + std::llround(t * 1e6);
+    out.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace stairs::sim
