@@ -33,8 +33,9 @@ void ImuGravity::add(const ImuSample& s) {
     first_utime_ = last_utime_ = s.utime;
     return;
   }
-  // A world-fixed vector seen from a frame turning at w changes by -w x v.
-  gravity_ -= s.angular_rate_radps.cross(gravity_) * dt;
+  // A world-fixed vector seen from a frame turning at w turns by -w dt.
+  const double turn = s.angular_rate_radps.norm() * dt;
+  if (turn > 0) gravity_ = Eigen::AngleAxisd(-turn, s.angular_rate_radps.normalized()) * gravity_;
   // The specific force itself is low-passed, not its direction: a walking
   // carrier's bounce and surge average out to zero only as vectors.
   if ((f - gravity_).norm() <= c_.max_force_deviation * kGravity_mps2 * 2.0)

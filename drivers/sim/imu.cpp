@@ -19,7 +19,10 @@ ImuSim::ImuSim(const Trajectory& trajectory, const ImuNoise& noise, uint64_t see
 }
 
 ImuSample ImuSim::measure(double t) {
-  const double h = kDifference_s;
+  // Over one sample interval, as a real IMU integrates it: the rotation since
+  // the last sample (so that integrating the rates gives back the trajectory's
+  // attitude, kinks included), and the acceleration by a central difference.
+  const double h = 1.0 / noise_.rate_hz;
   // The walk starts at t = 0: no differences reach before it (one-sided there).
   const double m = std::max(t, h);
   const Eigen::Isometry3d a = trajectory_.pose_at(m - h), b = trajectory_.pose_at(m), c = trajectory_.pose_at(m + h);
@@ -27,9 +30,8 @@ ImuSample ImuSim::measure(double t) {
   // accelerometer feels: acceleration minus gravity, in the optical frame.
   const Eigen::Vector3d accel = (c.translation() - 2.0 * b.translation() + a.translation()) / (h * h);
   const Eigen::Vector3d force = b.linear().transpose() * (accel + Eigen::Vector3d(0, 0, kGravity_mps2));
-  // Body angular rate from the relative rotation over the central difference.
-  const Eigen::AngleAxisd turn(a.linear().transpose() * c.linear());
-  const Eigen::Vector3d rate = turn.axis() * turn.angle() / (2.0 * h);
+  const Eigen::AngleAxisd turn(trajectory_.pose_at(t - h).linear().transpose() * trajectory_.pose_at(t).linear());
+  const Eigen::Vector3d rate = t < h ? Eigen::Vector3d::Zero() : Eigen::Vector3d(turn.axis() * turn.angle() / h);
   ImuSample s;
   s.specific_force_mps2 = force + accel_bias_ +
                           noise_.accel_noise_mps2 * Eigen::Vector3d(rng_.gaussian(), rng_.gaussian(), rng_.gaussian());

@@ -171,7 +171,10 @@ TEST_F(TrackerFaults, OdometryKeepsTheModelAcrossAFiveSecondGap) {
     ASSERT_NO_FATAL_FAILURE(send_and_expect(k, k + 1));
   }
   const int fused_before_gap = model(29).observations_fused;
-  for (size_t k = 30; k < 180; ++k) send_odometry(k);  // 5 s: odometry only
+  for (size_t k = 30; k < 180; ++k) {  // 5 s: odometry only, paced (a burst can overflow a socket buffer)
+    send_odometry(k);
+    test::pump(lcm_, 2);
+  }
   pose_t bad = to_lcm(OdometrySample{});
   bad.orientation[0] = 3.0;
   lcm_.publish(test::channel("ODOM"), &bad);
