@@ -88,50 +88,49 @@ class LogSource : public FrameSource {
       eof_ = true;
       return;
     }
-    std::string error;
     if (ev.channel == depth_channel_) {
-      depth_frame_t msg;
       DepthImage img;
-      if (decode_message(ev.data.data(), ev.data.size(), msg, error) && from_lcm(msg, img, error)) {
-        pending_.push_back({std::move(img), std::move(odometry_), std::move(imu_)});
-        odometry_.clear();
-        imu_.clear();
-        return;
-      }
-      ++invalid_;
-      last_error_ = log_.path() + ": " + ev.channel + " message skipped: " + error;
+      if (!decode<depth_frame_t>(ev, img)) return;
+      pending_.push_back({std::move(img), std::move(odometry_), std::move(imu_)});
+      odometry_.clear();
+      imu_.clear();
     } else if (ev.channel == odometry_channel_) {
-      pose_t msg;
       OdometrySample o;
-      if (decode_message(ev.data.data(), ev.data.size(), msg, error) && from_lcm(msg, o, error)) {
-        if (odometry_.size() >= kMaxSamplesPerFrame) odometry_.erase(odometry_.begin());
-        odometry_.push_back(o);
-        return;
-      }
-      ++invalid_;
-      last_error_ = log_.path() + ": " + ev.channel + " message skipped: " + error;
+      if (decode<pose_t>(ev, o)) hold(odometry_, o);
     } else if (ev.channel == imu_channel_) {
-      imu_t msg;
       ImuSample sample;
-      if (decode_message(ev.data.data(), ev.data.size(), msg, error) && from_lcm(msg, sample, error)) {
-        if (imu_.size() >= kMaxSamplesPerFrame) imu_.erase(imu_.begin());
-        imu_.push_back(sample);
-        return;
-      }
-      ++invalid_;
-      last_error_ = log_.path() + ": " + ev.channel + " message skipped: " + error;
+      if (decode<imu_t>(ev, sample)) hold(imu_, sample);
     } else if (ev.channel == truth_channel_) {
       ground_truth_t msg;
       GroundTruth gt;
       GroundTruthFrame fr;
+      std::string error;
       if (decode_message(ev.data.data(), ev.data.size(), msg, error) && from_lcm(msg, gt, fr, error)) {
         if (!truth_) truth_ = gt;
         truth_by_seq_[msg.seq] = fr;
-        return;
+      } else {
+        skipped(ev, error);
       }
-      ++invalid_;
-      last_error_ = log_.path() + ": " + ev.channel + " message skipped: " + error;
     }
+  }
+
+  // Decodes and validates one message into `out`; a bad one is counted and named.
+  template <class Msg, class Value>
+  bool decode(const LogEvent& ev, Value& out) {
+    Msg msg;
+    std::string error;
+    if (decode_message(ev.data.data(), ev.data.size(), msg, error) && from_lcm(msg, out, error)) return true;
+    skipped(ev, error);
+    return false;
+  }
+  void skipped(const LogEvent& ev, const std::string& error) {
+    ++invalid_;
+    last_error_ = log_.path() + ": " + ev.channel + " message skipped: " + error;
+  }
+  template <class Sample>
+  static void hold(std::vector<Sample>& held, const Sample& s) {
+    if (held.size() >= kMaxSamplesPerFrame) held.erase(held.begin());
+    held.push_back(s);
   }
 
   // Odometry or IMU samples held per frame (1 kHz over a 1 s gap between frames):

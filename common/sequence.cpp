@@ -5,6 +5,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <array>
 #include <cinttypes>
 #include <cmath>
 #include <cstring>
@@ -55,10 +56,20 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   optional_file("imu.txt", read_imu_file, imu_);
 }
 
-std::vector<ImuSample> read_imu_file(const std::string& path) {
+namespace {
+
+int64_t utime_of(double timestamp_s) {
+  return static_cast<int64_t>(timestamp_s * 1e6 + (timestamp_s >= 0 ? 0.5 : -0.5));
+}
+
+// A timestamped text file of N numbers per line after the timestamp ('#'
+// comments, blank lines): make(utime, values, where) builds a sample (throwing
+// with `where` = "FILE:LINE: " on a bad one); time must increase.
+template <size_t N, class Sample, class Make>
+std::vector<Sample> read_timestamped(const std::string& path, const char* format, Make make) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": unreadable");
-  std::vector<ImuSample> out;
+  std::vector<Sample> out;
   std::string line;
   int line_no = 0;
   while (std::getline(in, line)) {
@@ -67,44 +78,41 @@ std::vector<ImuSample> read_imu_file(const std::string& path) {
     if (first == std::string::npos || line[first] == '#') continue;
     const std::string where = path + ":" + std::to_string(line_no) + ": ";
     std::istringstream ls(line);
-    double t, v[6];
-    if (!(ls >> t >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5]))
-      throw std::runtime_error(where + "expected '<timestamp_s> ax ay az gx gy gz' (finite numbers)");
-    ImuSample s;
-    s.utime = static_cast<int64_t>(t * 1e6 + (t >= 0 ? 0.5 : -0.5));
-    s.specific_force_mps2 = Eigen::Vector3d(v[0], v[1], v[2]);
-    s.angular_rate_radps = Eigen::Vector3d(v[3], v[4], v[5]);
+    double t = 0;
+    std::array<double, N> v{};
+    bool ok = static_cast<bool>(ls >> t);
+    for (double& x : v) ok = ok && static_cast<bool>(ls >> x);
+    if (!ok) throw std::runtime_error(where + "expected '<timestamp_s> " + format + "' (finite numbers)");
+    Sample s = make(utime_of(t), v, where);
     if (!out.empty() && s.utime <= out.back().utime) throw std::runtime_error(where + "time does not increase");
     out.push_back(s);
   }
   return out;
 }
 
+}  // namespace
+
+std::vector<ImuSample> read_imu_file(const std::string& path) {
+  return read_timestamped<6, ImuSample>(path, "ax ay az gx gy gz", [](int64_t utime, const auto& v, const std::string&) {
+    ImuSample s;
+    s.utime = utime;
+    s.specific_force_mps2 = Eigen::Vector3d(v[0], v[1], v[2]);
+    s.angular_rate_radps = Eigen::Vector3d(v[3], v[4], v[5]);
+    return s;
+  });
+}
+
 std::vector<OdometrySample> read_odometry_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": unreadable");
-  std::vector<OdometrySample> out;
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    const std::string where = path + ":" + std::to_string(line_no) + ": ";
-    std::istringstream ls(line);
-    double t, v[7];
-    if (!(ls >> t >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5] >> v[6]))
-      throw std::runtime_error(where + "expected '<timestamp_s> x y z qw qx qy qz' (finite numbers)");
-    OdometrySample o;
-    o.utime = static_cast<int64_t>(t * 1e6 + (t >= 0 ? 0.5 : -0.5));
-    o.position_m = Eigen::Vector3d(v[0], v[1], v[2]);
-    const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
-    if (std::abs(q.norm() - 1.0) > 1e-3) throw std::runtime_error(where + "qw qx qy qz is no unit quaternion");
-    o.orientation = q.normalized();
-    if (!out.empty() && o.utime <= out.back().utime) throw std::runtime_error(where + "time does not increase");
-    out.push_back(o);
-  }
-  return out;
+  return read_timestamped<7, OdometrySample>(
+      path, "x y z qw qx qy qz", [](int64_t utime, const auto& v, const std::string& where) {
+        const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+        if (std::abs(q.norm() - 1.0) > 1e-3) throw std::runtime_error(where + "qw qx qy qz is no unit quaternion");
+        OdometrySample o;
+        o.utime = utime;
+        o.position_m = Eigen::Vector3d(v[0], v[1], v[2]);
+        o.orientation = q.normalized();
+        return o;
+      });
 }
 
 DepthImage SequenceReader::read(size_t i) const {
@@ -127,7 +135,7 @@ DepthImage SequenceReader::read(size_t i) const {
   for (int v = 0; v < m.rows; ++v)
     std::memcpy(img.depth.data() + static_cast<size_t>(v) * K_.width, m.ptr<uint16_t>(v),
                 sizeof(uint16_t) * K_.width);
-  img.utime = static_cast<int64_t>(e.timestamp * 1e6 + (e.timestamp >= 0 ? 0.5 : -0.5));
+  img.utime = utime_of(e.timestamp);
   img.seq = static_cast<int32_t>(i);
   return img;
 }

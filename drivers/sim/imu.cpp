@@ -1,5 +1,7 @@
 #include "drivers/sim/imu.hpp"
 
+#include "drivers/sim/sampling.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -41,14 +43,7 @@ ImuSample ImuSim::measure(double t) {
 }
 
 std::vector<ImuSample> ImuSim::until(double t_s, int64_t utime0) {
-  std::vector<ImuSample> out;
-  for (; next_ / noise_.rate_hz <= t_s + 1e-9; ++next_) {
-    const double t = next_ / noise_.rate_hz;
-    ImuSample s = measure(t);
-    s.utime = utime0 + std::llround(t * 1e6);
-    out.push_back(s);
-  }
-  return out;
+  return samples_until(next_, noise_.rate_hz, t_s, utime0, [this](double t) { return measure(t); });
 }
 
 }  // namespace stairs::sim

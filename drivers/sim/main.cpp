@@ -42,6 +42,53 @@ struct Outputs {
   std::unique_ptr<lcm::LCM> lcm;
 };
 
+// The optional robot sensors (--odometry, --imu): their samples up to each
+// frame's time go to every output before the frame.
+class RobotSensors {
+ public:
+  RobotSensors(const Options& o, const Trajectory& traj, uint64_t seed, bool loop)
+      : odometry_channel_(o.get("odometry-channel")), imu_channel_(o.get("imu-channel")) {
+    const auto rate = [&](const char* name, double max_hz) {
+      if (loop) throw std::runtime_error(std::string("--") + name + " with --loop: the trajectory would jump back");
+      const double hz = o.get_double(std::string(name) + "-rate-hz");
+      if (!(hz > 0 && hz <= max_hz))
+        throw std::runtime_error(std::string("--") + name + "-rate-hz must be within (0, " + std::to_string(max_hz) + "]");
+      return hz;
+    };
+    if (o.flag("odometry")) {
+      OdometryNoise noise;
+      noise.rate_hz = rate("odometry", 1000);
+      odometry_ = std::make_unique<OdometrySim>(traj, noise, seed);
+    }
+    if (o.flag("imu")) {
+      ImuNoise noise;
+      noise.rate_hz = rate("imu", 2000);
+      imu_ = std::make_unique<ImuSim>(traj, noise, seed);
+    }
+  }
+
+  // Samples up to trajectory time t_s, which is utime on the output's clock.
+  void emit(double t_s, int64_t utime, Outputs& out, bool publish) {
+    const int64_t utime0 = utime - std::llround(t_s * 1e6);
+    const auto send = [&](const auto& samples, const std::string& channel, auto write_seq) {
+      for (const auto& sample : samples) {
+        const auto msg = to_lcm(sample);
+        if (out.log) out.log->write_message(channel, sample.utime, msg);
+        if (out.seq) write_seq(sample);
+        if (publish) out.lcm->publish(channel, &msg);
+      }
+    };
+    if (odometry_)
+      send(odometry_->until(t_s, utime0), odometry_channel_, [&](const OdometrySample& x) { out.seq->write_odometry(x); });
+    if (imu_) send(imu_->until(t_s, utime0), imu_channel_, [&](const ImuSample& x) { out.seq->write_imu(x); });
+  }
+
+ private:
+  std::string odometry_channel_, imu_channel_;
+  std::unique_ptr<OdometrySim> odometry_;
+  std::unique_ptr<ImuSim> imu_;
+};
+
 void list_presets() {
   for (const std::string& name : preset_names()) std::printf("%-14s %s\n", name.c_str(), preset_summary(name).c_str());
 }
@@ -135,22 +182,7 @@ int run(int argc, char** argv) {
   StatusReporter status(out.lcm.get(), "stairs-sim", o.get("status-channel"), o.flag("verbose"));
   install_stop_signals();
 
-  std::unique_ptr<OdometrySim> odometry;
-  if (o.flag("odometry")) {
-    if (loop) throw std::runtime_error("--odometry with --loop: odometry never jumps back, the trajectory would");
-    OdometryNoise noise;
-    noise.rate_hz = o.get_double("odometry-rate-hz");
-    if (!(noise.rate_hz > 0 && noise.rate_hz <= 1000)) throw std::runtime_error("--odometry-rate-hz must be within (0, 1000]");
-    odometry = std::make_unique<OdometrySim>(traj, noise, setup.seed);
-  }
-  std::unique_ptr<ImuSim> imu;
-  if (o.flag("imu")) {
-    if (loop) throw std::runtime_error("--imu with --loop: the trajectory would jump back");
-    ImuNoise noise;
-    noise.rate_hz = o.get_double("imu-rate-hz");
-    if (!(noise.rate_hz > 0 && noise.rate_hz <= 2000)) throw std::runtime_error("--imu-rate-hz must be within (0, 2000]");
-    imu = std::make_unique<ImuSim>(traj, noise, setup.seed);
-  }
+  RobotSensors sensors(o, traj, setup.seed, loop);
   double gap_start_s = 0.0, gap_length_s = 0.0;
   if (o.has("gap")) {
     char colon = 0, extra = 0;
@@ -197,24 +229,7 @@ int run(int argc, char** argv) {
     }
     const double t_s = seq / setup.trajectory.fps;  // sequence time, continues across loops
     const int64_t utime = publish && !to_files ? now_utime() : start_utime + std::llround(t_s * 1e6);
-    if (odometry) {
-      const double t_traj = traj.time_s(f);
-      for (const OdometrySample& sample : odometry->until(t_traj, utime - std::llround(t_traj * 1e6))) {
-        const pose_t msg = to_lcm(sample);
-        if (out.log) out.log->write_message(o.get("odometry-channel"), sample.utime, msg);
-        if (out.seq) out.seq->write_odometry(sample);
-        if (publish) out.lcm->publish(o.get("odometry-channel"), &msg);
-      }
-    }
-    if (imu) {
-      const double t_traj = traj.time_s(f);
-      for (const ImuSample& sample : imu->until(t_traj, utime - std::llround(t_traj * 1e6))) {
-        const imu_t msg = to_lcm(sample);
-        if (out.log) out.log->write_message(o.get("imu-channel"), sample.utime, msg);
-        if (out.seq) out.seq->write_imu(sample);
-        if (publish) out.lcm->publish(o.get("imu-channel"), &msg);
-      }
-    }
+    sensors.emit(traj.time_s(f), utime, out, publish);
     // In a gap the frame is not sent; its sequence number is skipped, so the
     // stream shows what is missing.
     const bool in_gap = traj.time_s(f) >= gap_start_s && traj.time_s(f) < gap_start_s + gap_length_s;

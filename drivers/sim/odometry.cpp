@@ -1,5 +1,7 @@
 #include "drivers/sim/odometry.hpp"
 
+#include "drivers/sim/sampling.hpp"
+
 #include <cmath>
 
 namespace stairs::sim {
@@ -31,17 +33,13 @@ void OdometrySim::step_to(double t_s) {
 }
 
 std::vector<OdometrySample> OdometrySim::until(double t_s, int64_t utime0) {
-  std::vector<OdometrySample> out;
-  for (; next_ / noise_.rate_hz <= t_s + 1e-9; ++next_) {
-    const double t = next_ / noise_.rate_hz;
+  return samples_until(next_, noise_.rate_hz, t_s, utime0, [this](double t) {
     step_to(t);
     OdometrySample o;
-    o.utime = utime0 + std::llround(t * 1e6);
     o.position_m = position_m_;
     o.orientation = Eigen::Quaterniond(yaw(yaw_error_rad_) * true_.linear()).normalized();
-    out.push_back(o);
-  }
-  return out;
+    return o;
+  });
 }
 
 }  // namespace stairs::sim
