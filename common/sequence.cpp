@@ -17,6 +17,50 @@
 namespace stairs {
 namespace fs = std::filesystem;
 
+namespace {
+
+// Calls f(line stream, "FILE:LINE: ") for each line of a text file that is
+// neither blank nor a '#' comment.
+template <class F>
+void for_each_data_line(std::istream& in, const std::string& path, F f) {
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream ls(line);
+    f(ls, path + ":" + std::to_string(line_no) + ": ");
+  }
+}
+
+int64_t utime_of(double timestamp_s) {
+  return static_cast<int64_t>(timestamp_s * 1e6 + (timestamp_s >= 0 ? 0.5 : -0.5));
+}
+
+// A timestamped text file of N numbers per line after the timestamp ('#'
+// comments, blank lines): make(utime, values, where) builds a sample (throwing
+// with `where` = "FILE:LINE: " on a bad one); time must increase.
+template <size_t N, class Sample, class Make>
+std::vector<Sample> read_timestamped(const std::string& path, const char* format, Make make) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": unreadable");
+  std::vector<Sample> out;
+  for_each_data_line(in, path, [&](std::istringstream& ls, const std::string& where) {
+    double t = 0;
+    std::array<double, N> v{};
+    bool ok = static_cast<bool>(ls >> t);
+    for (double& x : v) ok = ok && static_cast<bool>(ls >> x);
+    if (!ok) throw std::runtime_error(where + "expected '<timestamp_s> " + format + "' (finite numbers)");
+    Sample s = make(utime_of(t), v, where);
+    if (!out.empty() && s.utime <= out.back().utime) throw std::runtime_error(where + "time does not increase");
+    out.push_back(s);
+  });
+  return out;
+}
+
+}  // namespace
+
 SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   if (!fs::is_directory(dir)) throw std::runtime_error(dir + ": not a directory");
   const std::string camera = (fs::path(dir) / "camera.json").string();
@@ -26,19 +70,11 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   const std::string index = (fs::path(dir) / "depth.txt").string();
   std::ifstream in(index);
   if (!in) throw std::runtime_error(index + ": missing or unreadable");
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream ls(line);
+  for_each_data_line(in, index, [&](std::istringstream& ls, const std::string& where) {
     Entry e;
-    if (!(ls >> e.timestamp >> e.path))
-      throw std::runtime_error(index + ":" + std::to_string(line_no) +
-                               ": expected '<timestamp_s> <path.png>'");
+    if (!(ls >> e.timestamp >> e.path)) throw std::runtime_error(where + "expected '<timestamp_s> <path.png>'");
     entries_.push_back(e);
-  }
+  });
   if (entries_.empty()) throw std::runtime_error(index + ": lists no frames");
 
   const std::string gt = (fs::path(dir) / "groundtruth.json").string();
@@ -55,42 +91,6 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   optional_file("odometry.txt", read_odometry_file, odometry_);
   optional_file("imu.txt", read_imu_file, imu_);
 }
-
-namespace {
-
-int64_t utime_of(double timestamp_s) {
-  return static_cast<int64_t>(timestamp_s * 1e6 + (timestamp_s >= 0 ? 0.5 : -0.5));
-}
-
-// A timestamped text file of N numbers per line after the timestamp ('#'
-// comments, blank lines): make(utime, values, where) builds a sample (throwing
-// with `where` = "FILE:LINE: " on a bad one); time must increase.
-template <size_t N, class Sample, class Make>
-std::vector<Sample> read_timestamped(const std::string& path, const char* format, Make make) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": unreadable");
-  std::vector<Sample> out;
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    const std::string where = path + ":" + std::to_string(line_no) + ": ";
-    std::istringstream ls(line);
-    double t = 0;
-    std::array<double, N> v{};
-    bool ok = static_cast<bool>(ls >> t);
-    for (double& x : v) ok = ok && static_cast<bool>(ls >> x);
-    if (!ok) throw std::runtime_error(where + "expected '<timestamp_s> " + format + "' (finite numbers)");
-    Sample s = make(utime_of(t), v, where);
-    if (!out.empty() && s.utime <= out.back().utime) throw std::runtime_error(where + "time does not increase");
-    out.push_back(s);
-  }
-  return out;
-}
-
-}  // namespace
 
 std::vector<ImuSample> read_imu_file(const std::string& path) {
   return read_timestamped<6, ImuSample>(path, "ax ay az gx gy gz", [](int64_t utime, const auto& v, const std::string&) {
