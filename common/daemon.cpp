@@ -148,6 +148,12 @@ void StatusReporter::dropped(const std::string& reason) {
   last_error_ = reason;
 }
 
+void StatusReporter::event(const std::string& what) {
+  std::lock_guard<std::mutex> lock(m_);
+  last_error_ = what;
+  std::cerr << name_ << ": " << what << "\n";
+}
+
 void StatusReporter::invalid(const std::string& reason) {
   ++invalid_;
   std::lock_guard<std::mutex> lock(m_);

@@ -89,6 +89,7 @@ class StatusReporter {
   void published(double latency_ms);
   void dropped(const std::string& reason);
   void invalid(const std::string& reason);  // also logged to stderr, rate-limited
+  void event(const std::string& what);      // a reset and the like: logged to stderr as it happens
   void tick();                              // call often; acts once a second
   void final_report();                      // one summary line on exit
   int64_t received_count() const { return received_; }

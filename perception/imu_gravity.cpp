@@ -21,8 +21,11 @@ Eigen::Matrix3d imu_to_camera(const ImuConfig& c) {
 
 void ImuGravity::add(const ImuSample& s) {
   if (started_ && s.utime <= last_utime_) {
-    ++dropped_;
-    return;
+    if ((last_utime_ - s.utime) * 1e-6 <= c_.max_age_s) {
+      ++dropped_;
+      return;
+    }
+    started_ = false;  // far back: a new stream (a log replayed) starts the filter again
   }
   const Eigen::Vector3d& f = s.specific_force_mps2;
   const double dt = started_ ? (s.utime - last_utime_) * 1e-6 : 0.0;

@@ -25,8 +25,9 @@ class ImuGravity {
  public:
   explicit ImuGravity(const ImuConfig& c) : c_(c) {}
   // One sample in the camera optical frame, in time order (an older or equal
-  // one is dropped and counted; after a gap longer than max_age_s the filter
-  // starts again from the accelerometer).
+  // one is dropped and counted; after a gap longer than max_age_s, or a step
+  // back in time longer than that, the filter starts again from the
+  // accelerometer).
   void add(const ImuSample& s);
   // The filter's up (unit, camera optical frame) for a frame at utime: none
   // unless warmed up and fresh.

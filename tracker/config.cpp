@@ -42,6 +42,7 @@ void validate(const TrackerConfig& c) {
           "direction_window/direction_majority");
   require(c.max_reconstructed_gap_steps >= 0, "max_reconstructed_gap_steps");
   require(c.lost_after_s > 0 && c.reset_after_s > 0, "lost_after_s/reset_after_s");
+  require(c.time_jump_back_s > 0, "time_jump_back_s");
   require(c.predict_camera_s >= 0 && c.predict_camera_s <= c.max_prediction_s, "predict_camera_s");
   require(c.odometry_max_age_s >= 0 && c.odometry_max_age_s <= 10, "odometry_max_age_s");
   require(c.odometry_max_samples >= 2 && c.odometry_max_samples <= 1000000, "odometry_max_samples");
@@ -66,7 +67,7 @@ TrackerConfig load_tracker_config(const std::string& json_path) {
   X(match_tread_fraction) X(max_average_weight) X(max_plane_points) X(default_riser_m) X(default_tread_m) \
   X(landing_min_depth_m) X(min_confirmations) X(max_model_steps) X(monotonic_tolerance_m) X(direction_window)                \
   X(direction_majority) X(max_reconstructed_gap_steps) X(reconstruct_tolerance) X(lost_after_s)           \
-  X(reset_after_s)
+  X(reset_after_s) X(time_jump_back_s)
   for (const auto& [key, value] : j.items()) {
 #define STAIRS_READ(name)                      \
   if (key == #name) {                          \

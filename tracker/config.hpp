@@ -60,6 +60,9 @@ struct TrackerConfig {
   // --- quality and reset
   double lost_after_s = 0.5;  // s without an accepted registration: state Lost
   double reset_after_s = 5.0; // s lost: the model is dropped when the next stair comes into view
+  double time_jump_back_s = 1.0;  // s; an observation this much older than the last starts a new stream
+                                  // (a log replayed, a camera restarted): the model is reset; a smaller
+                                  // step back is an out-of-order observation and is dropped
 };
 
 // Reads a JSON object of parameters (any subset). Throws std::runtime_error

@@ -14,8 +14,11 @@ double optical_heading_rad(const Eigen::Quaterniond& q) {
 
 void OdometryPrior::add(const OdometrySample& o) {
   if (!samples_.empty() && o.utime <= samples_.back().utime) {
-    ++dropped_;
-    return;
+    if ((samples_.back().utime - o.utime) * 1e-6 <= jump_back_s_) {
+      ++dropped_;
+      return;
+    }
+    samples_.clear();  // a new stream (a log replayed): its odometry starts over
   }
   samples_.push_back(o);
   while (samples_.size() > max_samples_) samples_.pop_front();

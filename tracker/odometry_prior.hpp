@@ -17,10 +17,13 @@ namespace stairs {
 class OdometryPrior {
  public:
   // max_age_s: a time this long after the last sample holds it, later is not
-  // covered; max_samples: history cap, the oldest go first (TrackerConfig).
-  OdometryPrior(double max_age_s, size_t max_samples) : max_age_s_(max_age_s), max_samples_(max_samples) {}
+  // covered; max_samples: history cap, the oldest go first; jump_back_s: a
+  // sample this much older than the last starts a new stream (TrackerConfig).
+  OdometryPrior(double max_age_s, size_t max_samples, double jump_back_s)
+      : max_age_s_(max_age_s), max_samples_(max_samples), jump_back_s_(jump_back_s) {}
 
-  // Samples in time order; an older or equal one is dropped and counted.
+  // Samples in time order; an older or equal one is dropped and counted,
+  // unless it is older by more than jump_back_s: then the history restarts.
   void add(const OdometrySample& o);
   // Forgets samples before utime, keeping the one bracketing it.
   void forget_before(int64_t utime);
@@ -40,6 +43,7 @@ class OdometryPrior {
 
   double max_age_s_;
   size_t max_samples_;
+  double jump_back_s_;
   std::deque<OdometrySample> samples_;
   int64_t dropped_ = 0;
 };

@@ -40,7 +40,8 @@ std::optional<double> ascending_yaw(const Observation& obs) {
 Tracker::Tracker(TrackerConfig config)
     : config_(config),
       direction_(config.direction_window, config.direction_majority),
-      odometry_(config.odometry_max_age_s, static_cast<size_t>(std::max(2, config.odometry_max_samples))) {
+      odometry_(config.odometry_max_age_s, static_cast<size_t>(std::max(2, config.odometry_max_samples)),
+                config.time_jump_back_s) {
   validate(config_);
 }
 
@@ -93,11 +94,20 @@ Pose4 Tracker::predict(int64_t utime) const {
 
 const StairModel& Tracker::update(const Observation& obs) {
   const auto start = std::chrono::steady_clock::now();
+  std::string restarted;
   auto finish = [&]() -> const StairModel& {
+    if (!restarted.empty()) model_.status = restarted + "; " + model_.status;
     model_.update_latency_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return model_;
   };
+  if (have_utime_ && seconds(last_utime_ - obs.source_utime) > config_.time_jump_back_s) {
+    // Time went back by more than any reordering: a new stream. The old
+    // model's poses and times mean nothing in it.
+    restarted = "time went back " + std::to_string(seconds(last_utime_ - obs.source_utime)) + " s: model reset";
+    reset();
+    ++time_jumps_;
+  }
   if (have_utime_ && obs.source_utime <= last_utime_) {
     ++dropped_out_of_order_;
     model_.status = "dropped an out-of-order observation (" + std::to_string(dropped_out_of_order_) + " so far)";

@@ -19,7 +19,8 @@ class Tracker {
  public:
   explicit Tracker(TrackerConfig config = {});
   // Fuses one observation; observations older than the last one are dropped
-  // (counted) and leave the model unchanged.
+  // (counted) and leave the model unchanged, unless time went back by more
+  // than time_jump_back_s: then a new stream begins and the model is reset.
   const StairModel& update(const Observation& obs);
   // Optional odometry (DESIGN.md odometry.txt, STAIRS_ODOMETRY): where it
   // covers the time since the last registration it is the motion prior, the
@@ -31,6 +32,7 @@ class Tracker {
   int64_t dropped_out_of_order() const { return dropped_out_of_order_; }
   int64_t rejected_registrations() const { return rejected_registrations_; }
   int64_t resets() const { return resets_; }
+  int64_t time_jumps() const { return time_jumps_; }  // resets because time went back
   int64_t dropped_odometry() const { return odometry_.dropped(); }
 
  private:
@@ -47,7 +49,7 @@ class Tracker {
   std::deque<std::pair<int64_t, Pose4>> accepted_;  // recent accepted poses (utime, pose), for the velocity
   int64_t last_utime_ = 0;
   bool have_utime_ = false;
-  int64_t dropped_out_of_order_ = 0, rejected_registrations_ = 0, resets_ = 0;
+  int64_t dropped_out_of_order_ = 0, rejected_registrations_ = 0, resets_ = 0, time_jumps_ = 0;
 };
 
 }  // namespace stairs

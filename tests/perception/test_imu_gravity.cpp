@@ -32,8 +32,11 @@ TEST(ImuGravity, UpFromTheAccelerometerAfterTheWarmup) {
   ASSERT_TRUE(f.up_at(1000000));
   EXPECT_LT(angle_deg(*f.up_at(1000000), up), 0.01);
   EXPECT_FALSE(f.up_at(1000000 + 200000)) << "stale after max_age_s";
-  f.add(at_rest(500000, up));
+  f.add(at_rest(950000, up));
   EXPECT_EQ(f.dropped(), 1) << "a sample back in time is dropped and counted";
+  f.add(at_rest(-5000000, up));
+  EXPECT_EQ(f.dropped(), 1) << "5 s back: a new stream (a log replayed), the filter starts again";
+  EXPECT_FALSE(f.up_at(-5000000)) << "warming up again";
 }
 
 // The camera turns 30 deg about its optical axis in 0.5 s: the gyroscope

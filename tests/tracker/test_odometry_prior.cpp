@@ -28,7 +28,7 @@ TEST(OdometryPrior, HeadingOfTheOpticalAxis) {
 // walks 1 m ahead while turning 0.2 rad: in the stair frame it moves 1 m along
 // its own heading there, and turns by 0.2 rad.
 TEST(OdometryPrior, MotionTurnedIntoTheStairFrame) {
-  OdometryPrior prior(0.25, 100);
+  OdometryPrior prior(0.25, 100, 1.0);
   prior.add(sample(0, {5, 5, 0}, M_PI / 2));
   prior.add(sample(1000000, {5, 6, 0.18}, M_PI / 2 + 0.2));
   Pose4 from;
@@ -47,7 +47,7 @@ TEST(OdometryPrior, MotionTurnedIntoTheStairFrame) {
 }
 
 TEST(OdometryPrior, CoversOnlyWhereSamplesAreFresh) {
-  OdometryPrior prior(0.25, 100);
+  OdometryPrior prior(0.25, 100, 1.0);
   EXPECT_FALSE(prior.covers(0, 100));
   prior.add(sample(1000000, {0, 0, 0}, 0));
   EXPECT_FALSE(prior.covers(0, 1000000)) << "before the first sample";
@@ -55,10 +55,14 @@ TEST(OdometryPrior, CoversOnlyWhereSamplesAreFresh) {
   EXPECT_FALSE(prior.covers(1000000, 1300000));
   prior.add(sample(900000, {0, 0, 0}, 0));
   EXPECT_EQ(prior.dropped(), 1) << "a sample older than the last is dropped and counted";
+  prior.add(sample(-5000000, {0, 0, 0}, 0));
+  EXPECT_EQ(prior.dropped(), 1) << "5 s back: a new stream, not an out-of-order sample";
+  EXPECT_TRUE(prior.covers(-5000000, -4900000));
+  EXPECT_FALSE(prior.covers(1000000, 1100000)) << "the old stream is forgotten";
 }
 
 TEST(OdometryPrior, HistoryIsCapped) {
-  OdometryPrior prior(0.25, 10);
+  OdometryPrior prior(0.25, 10, 1.0);
   for (int i = 0; i < 50; ++i) prior.add(sample(i * 10000, {0.01 * i, 0, 0}, 0));
   EXPECT_FALSE(prior.covers(0, 490000)) << "the oldest samples are gone";
   EXPECT_TRUE(prior.covers(400000, 490000));

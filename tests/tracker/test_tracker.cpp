@@ -167,6 +167,34 @@ TEST(Tracker, OutOfOrderObservationsAreDroppedAndCounted) {
   EXPECT_EQ(tracker.model().observations_fused, fused + 1);
 }
 
+// Issue 18: a log replayed twice (or a camera restarted) sends time back by
+// seconds. That starts a new stream: the model is reset and the second pass is
+// tracked like the first, every observation giving a model; a step back
+// smaller than time_jump_back_s is reordering and is dropped.
+TEST(Tracker, ALogReplayedTwiceIsTrackedBothTimes) {
+  ObservationMaker maker(kStair, 7);
+  Tracker tracker;
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  const int n = 90;
+  for (int k = 0; k < n; ++k) tracker.update(maker.make(cams[k], k * 33333));
+  const int fused_first = tracker.model().observations_fused;
+  ASSERT_GT(fused_first, 60);
+  tracker.update(maker.make(cams[n - 5], (n - 20) * 33333));  // 0.5 s back: out of order
+  EXPECT_EQ(tracker.dropped_out_of_order(), 1);
+  EXPECT_EQ(tracker.time_jumps(), 0);
+  for (int k = 0; k < n; ++k) {
+    const StairModel& m = tracker.update(maker.make(cams[k], k * 33333));
+    if (k == 0) {
+      EXPECT_EQ(tracker.time_jumps(), 1);
+      EXPECT_EQ(m.observations_fused, 1);
+      EXPECT_NE(m.status.find("time went back"), std::string::npos) << m.status;
+    }
+  }
+  EXPECT_EQ(tracker.dropped_out_of_order(), 1) << "nothing of the second pass is dropped";
+  EXPECT_EQ(tracker.model().observations_fused, fused_first);
+  EXPECT_EQ(tracker.model().state, TrackingState::Ok);
+}
+
 TEST(Tracker, EmptyObservationsLoseThenResetTheModel) {
   TrackerConfig c;
   c.lost_after_s = 0.5;

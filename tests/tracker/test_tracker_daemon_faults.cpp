@@ -2,7 +2,8 @@
 // loopback: killed (SIGKILL) and restarted mid-stream it builds a new model from
 // the next observation; a 1.2 s gap in the observations is re-localised and an
 // out-of-order or repeated utime is dropped and counted, and it keeps publishing;
-// odometry on its channel bridges a 5 s gap, and a malformed one is counted.
+// odometry on its channel bridges a 5 s gap, and a malformed one is counted;
+// the same stream replayed (time back by seconds) resets the model.
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/multicast.hpp"
 #include "common/lcm_bridge.hpp"
@@ -196,3 +197,32 @@ TEST_F(TrackerFaults, OdometryKeepsTheModelAcrossAFiveSecondGap) {
 
 }  // namespace
 }  // namespace stairs
+
+namespace stairs {
+namespace {
+
+// Issue 18: the same stream twice (lcm-logplayer run again): time goes back by
+// seconds, the daemon resets its model, says so, and every observation of the
+// second pass gives a model again.
+TEST_F(TrackerFaults, ALogReplayedTwiceGivesAModelForEveryObservationOfTheSecondPass) {
+  std::unique_ptr<test::DaemonProcess> d;
+  ASSERT_NO_FATAL_FAILURE(start(d));
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(0, 60));
+  const int fused_first = model(59).observations_fused;
+  for (size_t k = 0; k < 60; ++k) {
+    const int32_t seq = 1000 + static_cast<int32_t>(k);
+    send(k, seq, static_cast<int64_t>(k) * 33'333);
+    ASSERT_TRUE(test::pump_until(lcm_, [&] { return models_.by_seq.count(seq) > 0; })) << "no model for the replay's " << k;
+  }
+  EXPECT_EQ(models_.by_seq.at(1000).observations_fused, 1) << models_.by_seq.at(1000).status;
+  EXPECT_EQ(models_.by_seq.at(1059).observations_fused, fused_first);
+  EXPECT_FALSE(models_.by_seq.at(1059).flights.empty());
+  ASSERT_TRUE(test::pump_until(lcm_, [&] { return status_.last->received == 120; }));
+  EXPECT_EQ(status_.last->dropped, 0);
+  EXPECT_NE(status_.last->last_error.find("time went back"), std::string::npos) << status_.last->last_error;
+  EXPECT_TRUE(d->stop_cleanly());
+}
+
+}  // namespace
+}  // namespace stairs
+

@@ -26,8 +26,9 @@ struct Handler {
       status->invalid(error);
       return;
     }
-    const int64_t dropped_before = tracker->dropped_out_of_order();
+    const int64_t dropped_before = tracker->dropped_out_of_order(), jumps_before = tracker->time_jumps();
     const stairs::StairModel& model = tracker->update(obs);
+    if (tracker->time_jumps() > jumps_before) status->event(model.status);
     if (tracker->dropped_out_of_order() > dropped_before) {
       status->dropped("out-of-order observation (utime " + std::to_string(obs.source_utime) + ")");
       return;
