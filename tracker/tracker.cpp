@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 
 namespace stairs {
@@ -104,7 +105,9 @@ const StairModel& Tracker::update(const Observation& obs) {
   if (have_utime_ && seconds(last_utime_ - obs.source_utime) > config_.time_jump_back_s) {
     // Time went back by more than any reordering: a new stream. The old
     // model's poses and times mean nothing in it.
-    restarted = "time went back " + std::to_string(seconds(last_utime_ - obs.source_utime)) + " s: model reset";
+    char what[64];
+    std::snprintf(what, sizeof what, "time went back %.1f s: model reset", seconds(last_utime_ - obs.source_utime));
+    restarted = what;
     reset();
     ++time_jumps_;
   }
