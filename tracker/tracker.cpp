@@ -97,7 +97,7 @@ const StairModel& Tracker::update(const Observation& obs) {
   const auto start = std::chrono::steady_clock::now();
   std::string restarted;
   auto finish = [&]() -> const StairModel& {
-    if (!restarted.empty()) model_.status = restarted + "; " + model_.status;
+    if (!restarted.empty()) model_.status = model_.status.empty() ? restarted : restarted + "; " + model_.status;
     model_.update_latency_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return model_;
