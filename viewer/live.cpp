@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <iostream>
 #include <stdexcept>
@@ -88,6 +89,12 @@ class LiveViewer {
 }  // namespace
 
 int run_live(const Options& opts) {
+  // Without a display Qt aborts inside the first window (exit 134): say why first.
+  const char* x11 = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!x11 || !*x11) && (!wayland || !*wayland))
+    throw std::runtime_error("no display: DISPLAY (or WAYLAND_DISPLAY) is not set. For pictures without one, use "
+                             "--render LOG --out DIR|FILE.mp4|FILE.png");
   const Channels ch{opts.get("depth-channel"), opts.get("observation-channel"), opts.get("model-channel"),
                     opts.get("truth-channel")};
   const ViewerConfig cfg;

@@ -19,6 +19,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -189,6 +190,12 @@ int64_t render_pipeline(const Options& opts, const std::string& input, const Cha
 int run_render(const Options& opts) {
   const std::string input = opts.get("render"), out = opts.get("out");
   if (out.empty()) throw std::runtime_error("--render needs --out DIR|FILE.mp4|FILE.png");
+  // A file name with another image or video extension would silently become a directory.
+  const std::string ext = fs::path(out).extension().string();
+  static const char* const kNotWritten[] = {".gif", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp", ".mkv", ".mov", ".webm"};
+  if (std::find(std::begin(kNotWritten), std::end(kNotWritten), ext) != std::end(kNotWritten))
+    throw std::runtime_error("--out '" + out + "': " + ext + " is not written; give a directory (one PNG per frame), "
+                             "FILE.mp4, FILE.avi or FILE.png");
   if (!fs::exists(input)) throw std::runtime_error(input + ": no such file or directory");
   const Channels ch{opts.get("depth-channel"), opts.get("observation-channel"), opts.get("model-channel"),
                     opts.get("truth-channel")};

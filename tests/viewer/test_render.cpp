@@ -168,6 +168,22 @@ TEST(ViewerRender, BadInputNamesTheFile) {
   EXPECT_NE(read_text(dir / "err").find("truncated.lcmlog"), std::string::npos) << read_text(dir / "err");
 }
 
+// Issue 18: --out FILE.gif would have become a directory; without a display the
+// live window aborted inside Qt (exit 134). Both now fail cleanly and say what to do.
+TEST(ViewerRender, UnwrittenFormatAndNoDisplayFailCleanly) {
+  const fs::path dir = scratch("clean_errors");
+  const std::string log = (fs::path(STAIRS_SOURCE_DIR) / "logs" / "up_handheld.lcmlog").string();
+  EXPECT_EQ(run_viewer("--render " + log + " --out " + (dir / "x.gif").string(), (dir / "err").string()), 1);
+  EXPECT_NE(read_text(dir / "err").find(".gif is not written"), std::string::npos) << read_text(dir / "err");
+  EXPECT_FALSE(fs::exists(dir / "x.gif"));
+  const int rc = std::system(("env -u DISPLAY -u WAYLAND_DISPLAY " + viewer_program() + " --max-fps 1 2>" +
+                              (dir / "err").string()).c_str());
+  EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 1) << rc;
+  const std::string err = read_text(dir / "err");
+  EXPECT_NE(err.find("DISPLAY"), std::string::npos) << err;
+  EXPECT_NE(err.find("--render"), std::string::npos) << err;
+}
+
 namespace {
 
 // A sample log of the simulator, or one written here from frames of the stairs_sim library.
