@@ -66,6 +66,11 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   const std::string camera = (fs::path(dir) / "camera.json").string();
   if (!fs::exists(camera)) throw std::runtime_error(camera + ": missing");
   intrinsics_from_json(read_json_file(camera), camera, K_, depth_scale_);
+  // A 16-bit depth PNG spans 0.1 mm to 1 cm per unit in practice (TUM 0.0002, Kinect 0.001); a
+  // scale outside that is most likely a unit mistake (1.0 puts every point beyond any sensor's range).
+  if (depth_scale_ < 1e-5 || depth_scale_ > 0.01)
+    warnings_.push_back(camera + ": depth_scale " + std::to_string(depth_scale_) +
+                        " m per unit is implausible (expected 0.0001-0.01: 0.001 for millimetres)");
 
   const std::string index = (fs::path(dir) / "depth.txt").string();
   std::ifstream in(index);

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <thread>
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
       .add("color", "", "also publish the registered RGB888 colour image")
       .add("zlib", "LEVEL", "zlib level of the depth data, 0 = raw", std::to_string(kDefaultZlibLevel))
       .add("lcm-url", "URL", "LCM URL (empty = LCM default)", "")
-      .add("channel", "NAME", "depth channel", "STAIRS_DEPTH")
+      .add("depth-channel", "NAME", "depth channel (as every program names it)", "STAIRS_DEPTH")
       .add("status-channel", "NAME", "status channel", "STAIRS_STATUS")
       .add("log", "FILE", "also record the frames to this LCM log (FILE.partial until a clean stop)")
       .add("no-publish", "", "do not publish, only record (--log)")
@@ -57,6 +58,10 @@ int main(int argc, char** argv) {
   }
   cfg.uri = opt.get("uri");
   cfg.oni_file = opt.get("oni");
+  if (!cfg.oni_file.empty() && !std::filesystem::is_regular_file(cfg.oni_file)) {
+    std::fprintf(stderr, "%s: cannot open recording %s: no such file\n", kName, cfg.oni_file.c_str());
+    return 1;
+  }
   cfg.fast = opt.flag("fast");
   cfg.loop = opt.flag("loop");
   cfg.color = opt.flag("color");
@@ -112,7 +117,7 @@ int main(int argc, char** argv) {
       return 1;
     }
 
-    const std::string channel = opt.get("channel");
+    const std::string channel = opt.get("depth-channel");
     stairs::DeviceClock clock;
     int last_index = -1;
     int32_t seq = 0;

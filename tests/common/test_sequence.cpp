@@ -162,6 +162,20 @@ TEST(Sequence, MalformedOdometryOrImuIsLeftOutWithAWarning) {
   }
 }
 
+// Issue 18: depth_scale 1.0 (metres per unit) reads, but would put every point
+// a kilometre away: a plausibility warning naming the file.
+TEST(Sequence, ImplausibleDepthScaleIsWarnedAbout) {
+  const fs::path dir = temp_dir("depth_scale");
+  SequenceWriter w(dir.string(), image(32, 24, 0).K, 1.0);
+  w.write(image(32, 24, 1000), 0.0);
+  w.finish();
+  SequenceReader r(dir.string());
+  ASSERT_EQ(r.warnings().size(), 1u);
+  EXPECT_NE(r.warnings()[0].find("camera.json: depth_scale"), std::string::npos) << r.warnings()[0];
+  EXPECT_TRUE(SequenceReader(write_sequence("depth_scale_ok").string()).warnings().empty());
+  fs::remove_all(dir);
+}
+
 TEST(Sequence, MissingCameraJson) {
   const fs::path dir = write_sequence("nocam");
   fs::remove(dir / "camera.json");
