@@ -132,7 +132,7 @@ bool Options::has(const std::string& name) const { return values_.count(name) > 
 
 StatusReporter::StatusReporter(lcm::LCM* lcm, std::string name, std::string channel, bool verbose)
     : lcm_(lcm), name_(std::move(name)), channel_(std::move(channel)), verbose_(verbose),
-      tty_(isatty(STDERR_FILENO) != 0), last_tick_(std::chrono::steady_clock::now()) {}
+      tty_(isatty(STDERR_FILENO) != 0), last_tick_(std::chrono::steady_clock::now()), last_log_line_(last_tick_) {}
 
 void StatusReporter::received() { ++received_; }
 
@@ -190,7 +190,10 @@ void StatusReporter::tick() {
   msg.rate_hz = static_cast<float>((published_ - published_at_last_tick_) / dt);
   published_at_last_tick_ = published_;
   if (lcm_) lcm_->publish(channel_, &msg);
-  if (tty_ || verbose_) {
+  // On a terminal (or --verbose) once a second; under systemd/journald, off a
+  // terminal, every kLogPeriod so the journal shows the daemon alive.
+  if (tty_ || verbose_ || now - last_log_line_ >= kLogPeriod) {
+    last_log_line_ = now;
     std::fprintf(stderr, "%s: %lld in, %lld out, %.1f Hz, %.2f ms median, %lld dropped, %lld invalid\n",
                  name_.c_str(), static_cast<long long>(msg.received), static_cast<long long>(msg.published),
                  msg.rate_hz, msg.latency_ms, static_cast<long long>(msg.dropped),

@@ -90,7 +90,8 @@ class StatusReporter {
   void dropped(const std::string& reason);
   void invalid(const std::string& reason);  // also logged to stderr, rate-limited
   void event(const std::string& what);      // a reset and the like: logged to stderr as it happens
-  void tick();                              // call often; acts once a second
+  void tick();  // call often; once a second: daemon_status_t, and a status line on stderr (on a
+                // terminal or with --verbose; otherwise every 10 s, for the journal)
   void final_report();                      // one summary line on exit
   int64_t received_count() const { return received_; }
   int64_t published_count() const { return published_; }
@@ -106,7 +107,8 @@ class StatusReporter {
   int64_t published_at_last_tick_ = 0;
   std::vector<double> latencies_;
   std::string last_error_;
-  std::chrono::steady_clock::time_point last_tick_, last_error_log_;
+  std::chrono::steady_clock::time_point last_tick_, last_error_log_, last_log_line_;
+  static constexpr std::chrono::seconds kLogPeriod{10};  // status line off a terminal
 };
 
 int64_t now_utime();

@@ -6,6 +6,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <stairs/daemon_status_t.hpp>
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -21,11 +22,18 @@ namespace stairs::test {
 
 class DaemonProcess {
  public:
-  // Runs STAIRS_BINARY_DIR/bin/<program> with `args`.
-  DaemonProcess(const std::string& program, const std::vector<std::string>& args) {
+  // Runs STAIRS_BINARY_DIR/bin/<program> with `args`; its stderr goes to
+  // `stderr_file` when one is given (then it is no terminal).
+  DaemonProcess(const std::string& program, const std::vector<std::string>& args, const std::string& stderr_file = "") {
     const std::string exe = std::string(STAIRS_BINARY_DIR) + "/bin/" + program;
     pid_ = fork();
     if (pid_ == 0) {
+      if (!stderr_file.empty()) {
+        const int fd = open(stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd < 0) _exit(126);
+        dup2(fd, STDERR_FILENO);
+        close(fd);
+      }
       std::vector<char*> argv{const_cast<char*>(exe.c_str())};
       for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
       argv.push_back(nullptr);

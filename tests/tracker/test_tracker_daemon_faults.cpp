@@ -12,6 +12,9 @@
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 
@@ -221,6 +224,33 @@ TEST_F(TrackerFaults, ALogReplayedTwiceGivesAModelForEveryObservationOfTheSecond
   EXPECT_EQ(status_.last->dropped, 0);
   EXPECT_NE(status_.last->last_error.find("time went back"), std::string::npos) << status_.last->last_error;
   EXPECT_TRUE(d->stop_cleanly());
+}
+
+}  // namespace
+}  // namespace stairs
+
+namespace stairs {
+namespace {
+
+// Issue 18: under systemd or journald stderr is no terminal; the daemon still
+// prints a status line every 10 s (and events such as a reset as they happen).
+TEST_F(TrackerFaults, OffATerminalAStatusLineEveryTenSeconds) {
+  const std::string err = std::string(STAIRS_BINARY_DIR) + "/" + test::channel("tracker_stderr.txt");
+  test::DaemonProcess d("stairs-tracker",
+                        {"--lcm-url", kUrl, "--observation-channel", test::channel("OBS"), "--model-channel",
+                         test::channel("MODEL"), "--status-channel", test::channel("STATUS")},
+                        err);
+  ASSERT_TRUE(test::pump_until(lcm_, [&] { return status_.last && status_.last->received == 0; }));  // subscribed
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(0, 5));
+  const auto read_all = [&] {
+    std::ifstream in(err);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  test::pump(lcm_, 11'500);
+  const std::string text = read_all();
+  EXPECT_NE(text.find("stairs-tracker: 5 in, 5 out"), std::string::npos) << text;
+  EXPECT_TRUE(d.stop_cleanly());
+  std::remove(err.c_str());
 }
 
 }  // namespace
