@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 
 namespace stairs {
 
@@ -49,8 +49,8 @@ Tracker::Tracker(TrackerConfig config)
 void Tracker::reset() {
   map_ = StairMap();
   direction_.reset();
-  accepted_.clear();
-  have_utime_ = false;  // odometry is kept: it is no state of the model
+  accepted_.clear();  // odometry is kept: it is no state of the model
+  have_utime_ = false;
   const StairModel fresh;
   model_ = fresh;
   ++resets_;
@@ -120,12 +120,13 @@ const StairModel& Tracker::update(const Observation& obs) {
   last_utime_ = obs.source_utime;
   model_.direction = direction_.update(obs.direction);
 
+  // Odometry that covers the time since the last registration is the prior.
+  const bool with_odometry = odometry_covers(obs.source_utime);
   // A stair lost for long is dropped once a new one is in view: until then the
-  // last model stays published.
-  // With odometry over the gap the model is kept: the prior still places it.
+  // last model stays published. With odometry over the gap it is kept: the
+  // prior still places it.
   if (!map_.empty() && !obs.steps.empty() &&
-      seconds(obs.source_utime - accepted_.back().first) > config_.reset_after_s &&
-      !odometry_covers(obs.source_utime)) {
+      seconds(obs.source_utime - accepted_.back().first) > config_.reset_after_s && !with_odometry) {
     reset();
     model_.direction = direction_.update(obs.direction);
   }
@@ -152,9 +153,10 @@ const StairModel& Tracker::update(const Observation& obs) {
   // view) while that is fresh; attitude is the observation's own.
   auto not_registered = [&](const std::string& why) -> const StairModel& {
     if (since_accept_s > config_.lost_after_s) model_.state = TrackingState::Lost;
-    const bool odometry = odometry_covers(obs.source_utime);
-    const bool predicted = obs.camera.valid && (odometry || since_accept_s <= config_.predict_camera_s);
-    model_.status = !predicted ? why : odometry ? why + "; camera from odometry" : why + "; camera from the motion prior";
+    const bool predicted = obs.camera.valid && (with_odometry || since_accept_s <= config_.predict_camera_s);
+    model_.status = !predicted      ? why
+                    : with_odometry ? why + "; camera from odometry"
+                                    : why + "; camera from the motion prior";
     publish(obs, by_prior(prior), predicted);
     return finish();
   };
@@ -167,7 +169,6 @@ const StairModel& Tracker::update(const Observation& obs) {
   }
   const RegistrationInput input = registration_input(obs, config_.registration_points_per_plane);
   // Odometry over a gap is a better prior than a whole-step search.
-  const bool with_odometry = odometry_covers(obs.source_utime);
   const bool relocalising =
       !with_odometry && (since_accept_s > config_.relocalise_after_s || model_.state == TrackingState::Lost);
   Registration reg = relocalising ? relocalise(input, map_, start_pose, config_)
