@@ -19,6 +19,13 @@ Eigen::Matrix3d imu_to_camera(const ImuConfig& c) {
       .toRotationMatrix();
 }
 
+ImuSample turned(const ImuSample& s, const Eigen::Matrix3d& imu_to_camera) {
+  ImuSample out = s;
+  out.specific_force_mps2 = imu_to_camera * s.specific_force_mps2;
+  out.angular_rate_radps = imu_to_camera * s.angular_rate_radps;
+  return out;
+}
+
 void ImuGravity::add(const ImuSample& s) {
   if (started_ && s.utime <= last_utime_) {
     if ((last_utime_ - s.utime) * 1e-6 <= c_.max_age_s) {

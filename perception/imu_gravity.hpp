@@ -20,6 +20,8 @@ namespace stairs {
 
 // IMU frame -> camera optical frame from the config.
 Eigen::Matrix3d imu_to_camera(const ImuConfig& c);
+// A sample of the IMU's frame in the camera optical frame.
+ImuSample turned(const ImuSample& s, const Eigen::Matrix3d& imu_to_camera);
 
 class ImuGravity {
  public:

@@ -117,13 +117,7 @@ RunResult replay(const std::string& input, const ReplayOptions& options, const F
     if (hook) hook(image);
 
     for (const OdometrySample& o : sf.odometry) tracker.add_odometry(o);
-    for (ImuSample s : sf.imu) {
-      if (!sf.imu_in_camera_frame) {
-        s.specific_force_mps2 = imu_rotation * s.specific_force_mps2;
-        s.angular_rate_radps = imu_rotation * s.angular_rate_radps;
-      }
-      pipeline.add_imu(s);
-    }
+    for (const ImuSample& s : sf.imu) pipeline.add_imu(sf.imu_in_camera_frame ? s : turned(s, imu_rotation));
     const auto t0 = Clock::now();
     Observation obs = pipeline.process(image);
     const auto t1 = Clock::now();

@@ -50,9 +50,7 @@ struct Receiver {
       status->invalid("IMU: " + error);
       return;
     }
-    s.specific_force_mps2 = imu_to_camera * s.specific_force_mps2;
-    s.angular_rate_radps = imu_to_camera * s.angular_rate_radps;
-    imu->push(s);
+    imu->push(stairs::turned(s, imu_to_camera));
   }
 
   void on_depth(const lcm::ReceiveBuffer* rbuf, const std::string&) {

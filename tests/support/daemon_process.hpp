@@ -104,10 +104,12 @@ struct StatusWatch {
 
 // Starts `program` with `args` and waits for its first status message on
 // `status`, which a daemon sends once it has subscribed; null if none came.
+// Its stderr goes to `stderr_file` when one is given.
 inline std::unique_ptr<DaemonProcess> start_daemon(lcm::LCM& lcm, StatusWatch& status, const std::string& program,
-                                                   const std::vector<std::string>& args) {
+                                                   const std::vector<std::string>& args,
+                                                   const std::string& stderr_file = "") {
   status.last.reset();
-  auto d = std::make_unique<DaemonProcess>(program, args);
+  auto d = std::make_unique<DaemonProcess>(program, args, stderr_file);
   if (!pump_until(lcm, [&] { return status.last && status.last->received == 0; })) return nullptr;
   return d;
 }

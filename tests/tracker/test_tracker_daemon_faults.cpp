@@ -50,11 +50,12 @@ class TrackerFaults : public ::testing::Test {
   }
 
   // Starts a daemon and waits for its first status message, sent once it has subscribed.
-  void start(std::unique_ptr<test::DaemonProcess>& d) {
+  void start(std::unique_ptr<test::DaemonProcess>& d, const std::string& stderr_file = "") {
     d = test::start_daemon(lcm_, status_, "stairs-tracker",
                            {"--lcm-url", kUrl, "--observation-channel", test::channel("OBS"), "--model-channel",
                             test::channel("MODEL"), "--status-channel", test::channel("STATUS"),
-                            "--odometry-channel", test::channel("ODOM")});
+                            "--odometry-channel", test::channel("ODOM")},
+                           stderr_file);
     ASSERT_TRUE(d) << "no status from the new daemon";
   }
 
@@ -85,14 +86,16 @@ class TrackerFaults : public ::testing::Test {
     lcm_.publish(test::channel("ODOM"), &msg);
   }
 
-  // Walk positions [from, to), one at a time: each model arrives before the next observation goes.
-  void send_and_expect(size_t from, size_t to) {
+  // Walk positions [from, to), one at a time, tagged seq_offset + k: each
+  // model arrives before the next observation goes.
+  void send_and_expect(size_t from, size_t to, int32_t seq_offset = 0) {
     for (size_t k = from; k < to; ++k) {
-      send(k);
-      ASSERT_TRUE(test::pump_until(lcm_, [&] { return models_.by_seq.count(static_cast<int32_t>(k)) > 0; }))
-          << "no model for observation " << k;
+      const int32_t seq = seq_offset + static_cast<int32_t>(k);
+      send(k, seq, static_cast<int64_t>(k) * 33'333);
+      ASSERT_TRUE(test::pump_until(lcm_, [&] { return models_.by_seq.count(seq) > 0; })) << "no model for observation " << seq;
     }
   }
+
 
   const StairModel& model(size_t k) { return models_.by_seq.at(static_cast<int32_t>(k)); }
 
@@ -157,12 +160,6 @@ TEST_F(TrackerFaults, GapAndOutOfOrderUtimesAreHandledCountedAndItKeepsPublishin
   EXPECT_TRUE(d->stop_cleanly());
 }
 
-}  // namespace
-}  // namespace stairs
-
-namespace stairs {
-namespace {
-
 // Odometry on its channel bridges 5 s without observations: the model is kept
 // and the first observation after the gap registers to it (without odometry
 // the model is dropped and seeded again, see Tracker.EmptyObservationsLoseThenResetTheModel).
@@ -198,12 +195,6 @@ TEST_F(TrackerFaults, OdometryKeepsTheModelAcrossAFiveSecondGap) {
   EXPECT_TRUE(d->stop_cleanly());
 }
 
-}  // namespace
-}  // namespace stairs
-
-namespace stairs {
-namespace {
-
 // Issue 18: the same stream twice (lcm-logplayer run again): time goes back by
 // seconds, the daemon resets its model, says so, and every observation of the
 // second pass gives a model again.
@@ -212,11 +203,7 @@ TEST_F(TrackerFaults, ALogReplayedTwiceGivesAModelForEveryObservationOfTheSecond
   ASSERT_NO_FATAL_FAILURE(start(d));
   ASSERT_NO_FATAL_FAILURE(send_and_expect(0, 60));
   const int fused_first = model(59).observations_fused;
-  for (size_t k = 0; k < 60; ++k) {
-    const int32_t seq = 1000 + static_cast<int32_t>(k);
-    send(k, seq, static_cast<int64_t>(k) * 33'333);
-    ASSERT_TRUE(test::pump_until(lcm_, [&] { return models_.by_seq.count(seq) > 0; })) << "no model for the replay's " << k;
-  }
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(0, 60, 1000));  // the same utimes again
   EXPECT_EQ(models_.by_seq.at(1000).observations_fused, 1) << models_.by_seq.at(1000).status;
   EXPECT_EQ(models_.by_seq.at(1059).observations_fused, fused_first);
   EXPECT_FALSE(models_.by_seq.at(1059).flights.empty());
@@ -226,21 +213,12 @@ TEST_F(TrackerFaults, ALogReplayedTwiceGivesAModelForEveryObservationOfTheSecond
   EXPECT_TRUE(d->stop_cleanly());
 }
 
-}  // namespace
-}  // namespace stairs
-
-namespace stairs {
-namespace {
-
 // Issue 18: under systemd or journald stderr is no terminal; the daemon still
 // prints a status line every 10 s (and events such as a reset as they happen).
 TEST_F(TrackerFaults, OffATerminalAStatusLineEveryTenSeconds) {
   const std::string err = std::string(STAIRS_BINARY_DIR) + "/" + test::channel("tracker_stderr.txt");
-  test::DaemonProcess d("stairs-tracker",
-                        {"--lcm-url", kUrl, "--observation-channel", test::channel("OBS"), "--model-channel",
-                         test::channel("MODEL"), "--status-channel", test::channel("STATUS")},
-                        err);
-  ASSERT_TRUE(test::pump_until(lcm_, [&] { return status_.last && status_.last->received == 0; }));  // subscribed
+  std::unique_ptr<test::DaemonProcess> d;
+  ASSERT_NO_FATAL_FAILURE(start(d, err));
   ASSERT_NO_FATAL_FAILURE(send_and_expect(0, 5));
   const auto read_all = [&] {
     std::ifstream in(err);
@@ -249,7 +227,7 @@ TEST_F(TrackerFaults, OffATerminalAStatusLineEveryTenSeconds) {
   test::pump(lcm_, 11'500);
   const std::string text = read_all();
   EXPECT_NE(text.find("stairs-tracker: 5 in, 5 out"), std::string::npos) << text;
-  EXPECT_TRUE(d.stop_cleanly());
+  EXPECT_TRUE(d->stop_cleanly());
   std::remove(err.c_str());
 }
 
