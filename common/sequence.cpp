@@ -34,6 +34,9 @@ void for_each_data_line(std::istream& in, const std::string& path, F f) {
   }
 }
 
+// Timestamps beyond this (about 3000 years) are garbage: their utime would overflow int64.
+constexpr double kMaxTimestamp_s = 1e11;
+
 int64_t utime_of(double timestamp_s) {
   return static_cast<int64_t>(timestamp_s * 1e6 + (timestamp_s >= 0 ? 0.5 : -0.5));
 }
@@ -50,7 +53,8 @@ std::vector<Sample> read_timestamped(const std::string& path, const char* format
     double t = 0;
     std::array<double, N> v{};
     bool ok = static_cast<bool>(ls >> t);
-    for (double& x : v) ok = ok && static_cast<bool>(ls >> x);
+    for (double& x : v) ok = ok && static_cast<bool>(ls >> x) && std::isfinite(x);
+    ok = ok && std::abs(t) < kMaxTimestamp_s;  // a utime in us must fit in int64
     if (!ok) throw std::runtime_error(where + "expected '<timestamp_s> " + format + "' (finite numbers)");
     Sample s = make(utime_of(t), v, where);
     if (!out.empty() && s.utime <= out.back().utime) throw std::runtime_error(where + "time does not increase");
@@ -77,7 +81,8 @@ SequenceReader::SequenceReader(const std::string& dir) : dir_(dir) {
   if (!in) throw std::runtime_error(index + ": missing or unreadable");
   for_each_data_line(in, index, [&](std::istringstream& ls, const std::string& where) {
     Entry e;
-    if (!(ls >> e.timestamp >> e.path)) throw std::runtime_error(where + "expected '<timestamp_s> <path.png>'");
+    if (!(ls >> e.timestamp >> e.path) || !(std::abs(e.timestamp) < kMaxTimestamp_s))
+      throw std::runtime_error(where + "expected '<timestamp_s> <path.png>' (a finite timestamp)");
     entries_.push_back(e);
   });
   if (entries_.empty()) throw std::runtime_error(index + ": lists no frames");
