@@ -1,8 +1,10 @@
 // stairs-eval: replays a log or sequence directory through perception and the
-// tracker, scores it against ground truth and writes DESIGN.md's Result JSON.
+// tracker (or takes what the daemons published, --recorded), scores it against
+// ground truth and writes DESIGN.md's Result JSON.
 #include "common/daemon.hpp"
 #include "common/json_io.hpp"
 #include "tools/downsample.hpp"
+#include "tools/recorded.hpp"
 #include "tools/replay.hpp"
 #include "tools/report.hpp"
 
@@ -12,12 +14,18 @@ int main(int argc, char** argv) {
   stairs::Options opts("stairs-eval",
                        "Replays INPUT (an LCM log or a sequence directory) through perception and the tracker "
                        "as fast as possible, prints the thesis' tables 6.1-6.4 when ground truth is present, the "
-                       "final model and per-stage latency.");
+                       "final model and per-stage latency. With --recorded it scores a recorded live run instead: the "
+                       "observations and models the daemons published, as they ran.");
   opts.positional("INPUT", "LCM log (STAIRS_DEPTH [+ STAIRS_GROUND_TRUTH]) or sequence directory")
       .add("json", "FILE", "write DESIGN.md's Result JSON here (atomically)")
       .add("config", "FILE", "JSON with optional \"perception\" and \"tracker\" objects")
       .add("max-frames", "N", "process at most N frames (0 = all)", "0")
       .add("resolution", "WxH", "downsample the input by an integer factor to WxH (e.g. 320x240)")
+      .add("recorded", "",
+           "score the STAIRS_OBSERVATION and STAIRS_MODEL messages recorded in the log (lcm-logger next to the "
+           "daemons); frames the live chain did not answer count as missed")
+      .add("observation-channel", "NAME", "with --recorded: the observations' channel", "STAIRS_OBSERVATION")
+      .add("model-channel", "NAME", "with --recorded: the models' channel", "STAIRS_MODEL")
       .add("quiet", "", "no progress bar and no report");
   opts.parse(argc, argv);
   try {
@@ -27,7 +35,19 @@ int main(int argc, char** argv) {
     if (opts.has("resolution")) stairs::eval::parse_resolution(opts.get("resolution"), options.width, options.height);
     options.config_path = opts.get("config");
     options.progress = !opts.flag("quiet");
-    const stairs::eval::RunResult result = stairs::eval::replay(opts.positionals().at(0), options);
+    stairs::eval::RunResult result;
+    if (opts.flag("recorded")) {
+      if (opts.has("config") || opts.has("resolution"))
+        throw std::invalid_argument("--recorded scores what the daemons published: --config and --resolution do not apply");
+      stairs::eval::RecordedOptions recorded;
+      recorded.observation_channel = opts.get("observation-channel");
+      recorded.model_channel = opts.get("model-channel");
+      recorded.max_frames = options.max_frames;
+      recorded.progress = options.progress;
+      result = stairs::eval::score_recorded(opts.positionals().at(0), recorded);
+    } else {
+      result = stairs::eval::replay(opts.positionals().at(0), options);
+    }
     if (opts.has("json")) stairs::write_json_file(opts.get("json"), stairs::eval::result_to_json(result));
     if (!opts.flag("quiet")) stairs::eval::print_report(std::cout, result);
   } catch (const std::exception& e) {

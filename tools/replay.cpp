@@ -6,6 +6,7 @@
 #include "perception/imu_gravity.hpp"
 #include "perception/pipeline.hpp"
 #include "tools/downsample.hpp"
+#include "tools/progress.hpp"
 #include "tracker/config.hpp"
 #include "tracker/model_output.hpp"
 #include "tracker/tracker.hpp"
@@ -47,33 +48,10 @@ Config load_section(const nlohmann::json& all, const char* key, const std::strin
   }
 }
 
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled && isatty(fileno(stderr))) {}
-  ~ProgressBar() {
-    if (enabled_ && drawn_) std::fprintf(stderr, "\r\033[K");
-  }
-  void update(double fraction, int frames) {
-    if (!enabled_) return;
-    const auto now = Clock::now();
-    if (drawn_ && now - last_ < std::chrono::milliseconds(100)) return;
-    last_ = now;
-    drawn_ = true;
-    const int width = 40, filled = static_cast<int>(std::min(1.0, std::max(0.0, fraction)) * width);
-    const double elapsed_s = std::chrono::duration<double>(now - start_).count();
-    std::fprintf(stderr, "\r[%s%s] %3.0f%%  %d frames  %.1f fps", std::string(filled, '#').c_str(),
-                 std::string(width - filled, '.').c_str(), 100.0 * fraction, frames,
-                 elapsed_s > 0 ? frames / elapsed_s : 0.0);
-    std::fflush(stderr);
-  }
 
- private:
-  bool enabled_;
-  bool drawn_ = false;
-  Clock::time_point start_ = Clock::now(), last_;
-};
+}  // namespace
 
-TrackedCamera tracked_camera(const StairModel& m) {
+TrackedCamera tracked_camera_of(const StairModel& m) {
   TrackedCamera c;
   c.valid = m.camera_valid;
   if (m.camera_beneath_known) {
@@ -85,7 +63,6 @@ TrackedCamera tracked_camera(const StairModel& m) {
   return c;
 }
 
-}  // namespace
 
 RunResult replay(const std::string& input, const ReplayOptions& options, const FrameHook& hook) {
   PerceptionConfig perception_config;
@@ -131,7 +108,7 @@ RunResult replay(const std::string& input, const ReplayOptions& options, const F
     f.steps = std::move(obs.steps);
     f.status = obs.status;
     f.tracked_steps = steps_from_camera(tracker.model());
-    f.tracked_camera = tracked_camera(tracker.model());
+    f.tracked_camera = tracked_camera_of(tracker.model());
     f.latency.push_back({"perception", ms_between(t0, t1)});
     f.latency.push_back({"tracker", ms_between(t1, t2)});
     for (const StageLatency& s : obs.stages) f.latency.push_back({"perception/" + s.name, s.ms});

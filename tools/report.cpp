@@ -79,6 +79,11 @@ void print_report(std::ostream& out, const RunResult& r) {
   out << "stairs-eval: " << r.input << "\n"
       << fmt("frames: %d processed of %d (%d invalid skipped)\n\n", r.frames_processed, r.frames_total,
              r.frames_invalid);
+  if (r.recorded)
+    out << fmt("recorded live run, scored as it ran: %d observations, %d models (%d rejected); "
+               "%d frames without an observation (missed), %d without a model\n\n",
+               r.recorded->observations, r.recorded->models, r.recorded->rejected_messages,
+               r.recorded->frames_without_observation, r.recorded->frames_without_model);
   if (r.score)
     print_score(out, *r.score);
   else

@@ -110,6 +110,15 @@ json score_to_json(const Score& s) {
       {"latency_ms", latency}};
 }
 
+// An extra key (a project extension, docs/DESIGN.md): what a recorded live run held.
+json recorded_to_json(const RecordedCounts& c) {
+  return {{"observations", c.observations},
+          {"models", c.models},
+          {"rejected_messages", c.rejected_messages},
+          {"frames_without_observation", c.frames_without_observation},
+          {"frames_without_model", c.frames_without_model}};
+}
+
 json result_to_json(const RunResult& r) {
   json frames = json::array();
   for (size_t i = 0; i < r.frames.size(); ++i) {
@@ -136,7 +145,8 @@ json result_to_json(const RunResult& r) {
           {"frames_invalid", r.frames_invalid},
           {"frames", frames},
           {"model", r.model ? model_to_json(*r.model) : json(nullptr)},
-          {"score", r.score ? score_to_json(*r.score) : json(nullptr)}};
+          {"score", r.score ? score_to_json(*r.score) : json(nullptr)},
+          {"recorded", r.recorded ? recorded_to_json(*r.recorded) : json(nullptr)}};
 }
 
 }  // namespace stairs::eval

@@ -12,6 +12,15 @@
 
 namespace stairs::eval {
 
+// What a recorded live run held (stairs-eval --recorded).
+struct RecordedCounts {
+  int observations = 0;                // valid observations on the observation channel
+  int models = 0;                      // valid models on the model channel
+  int rejected_messages = 0;           // observations or models that failed to decode or validate
+  int frames_without_observation = 0;  // depth frames the live chain never answered (scored as missed)
+  int frames_without_model = 0;        // depth frames with an observation but no model
+};
+
 struct RunResult {
   std::string input;
   int frames_total = 0;      // frames the input holds (valid ones)
@@ -20,6 +29,7 @@ struct RunResult {
   std::vector<FrameResult> frames;
   std::optional<StairModel> model;  // absent when no tracker ran
   std::optional<Score> score;       // present with ground truth
+  std::optional<RecordedCounts> recorded;  // present when the daemons' recorded output was scored
 };
 
 const char* direction_name(Direction d);  // "up", "down", "none"
@@ -27,6 +37,7 @@ const char* direction_name(Direction d);  // "up", "down", "none"
 nlohmann::json frame_to_json(const FrameResult& f);
 nlohmann::json model_to_json(const StairModel& m);
 nlohmann::json score_to_json(const Score& s);
+nlohmann::json recorded_to_json(const RecordedCounts& c);
 nlohmann::json result_to_json(const RunResult& r);
 
 }  // namespace stairs::eval
