@@ -100,6 +100,7 @@ STAIRS_INSTANTIATE(ground_truth_t)
 STAIRS_INSTANTIATE(daemon_status_t)
 STAIRS_INSTANTIATE(pose_t)
 STAIRS_INSTANTIATE(imu_t)
+STAIRS_INSTANTIATE(tracker_command_t)
 #undef STAIRS_INSTANTIATE
 
 // --- odometry -----------------------------------------------------------------
@@ -532,6 +533,14 @@ stair_model_t to_lcm(const StairModel& model, int64_t utime, int64_t source_utim
   m.confirmed = model.confirmed;
   m.camera_beneath_known = model.camera_beneath_known;
   return m;
+}
+
+stair_model_t steps_only(stair_model_t model) {
+  model.num_planes = 0;
+  model.planes.clear();
+  for (flight_t& f : model.flights)
+    for (step_t& s : f.steps) s.riser_plane = s.tread_plane = -1;
+  return model;
 }
 
 bool from_lcm(const stair_model_t& m, StairModel& model, std::string& error) {

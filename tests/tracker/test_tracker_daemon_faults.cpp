@@ -3,7 +3,8 @@
 // the next observation; a 1.2 s gap in the observations is re-localised and an
 // out-of-order or repeated utime is dropped and counted, and it keeps publishing;
 // odometry on its channel bridges a 5 s gap, and a malformed one is counted;
-// the same stream replayed (time back by seconds) resets the model.
+// the same stream replayed (time back by seconds) resets the model, and so does
+// a reset command; every model has a steps-only twin under 2 KB.
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/multicast.hpp"
 #include "common/lcm_bridge.hpp"
@@ -26,7 +27,18 @@ const std::string kUrl = "udpm://239.255.76.67:7695?ttl=0&recv_buf_size=4194304"
 struct Models {
   std::map<int32_t, StairModel> by_seq;  // by source_seq
   std::vector<int32_t> order;            // source_seq in arrival order
+  std::map<int32_t, std::pair<StairModel, int>> steps_only;  // by source_seq: model, encoded bytes
   int bad = 0;
+  void on_steps(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    stair_model_t msg;
+    StairModel m;
+    std::string error;
+    if (!decode_message(rbuf->data, rbuf->data_size, msg, error) || !from_lcm(msg, m, error)) {
+      ++bad;
+      return;
+    }
+    steps_only[msg.source_seq] = {m, static_cast<int>(rbuf->data_size)};
+  }
   void on_model(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     stair_model_t msg;
     StairModel m;
@@ -46,6 +58,7 @@ class TrackerFaults : public ::testing::Test {
     if (!test::ensure_multicast_loopback(kUrl)) GTEST_SKIP() << test::kMulticastSkipReason;
     ASSERT_TRUE(lcm_.good());
     lcm_.subscribe(test::channel("MODEL"), &Models::on_model, &models_);
+    lcm_.subscribe(test::channel("STEPS"), &Models::on_steps, &models_);
     lcm_.subscribe(test::channel("STATUS"), &test::StatusWatch::on_status, &status_);
   }
 
@@ -54,7 +67,8 @@ class TrackerFaults : public ::testing::Test {
     d = test::start_daemon(lcm_, status_, "stairs-tracker",
                            {"--lcm-url", kUrl, "--observation-channel", test::channel("OBS"), "--model-channel",
                             test::channel("MODEL"), "--status-channel", test::channel("STATUS"),
-                            "--odometry-channel", test::channel("ODOM")},
+                            "--odometry-channel", test::channel("ODOM"), "--steps-channel", test::channel("STEPS"),
+                            "--command-channel", test::channel("CMD")},
                            stderr_file);
     ASSERT_TRUE(d) << "no status from the new daemon";
   }
@@ -210,6 +224,61 @@ TEST_F(TrackerFaults, ALogReplayedTwiceGivesAModelForEveryObservationOfTheSecond
   ASSERT_TRUE(test::pump_until(lcm_, [&] { return status_.last->received == 120; }));
   EXPECT_EQ(status_.last->dropped, 0);
   EXPECT_NE(status_.last->last_error.find("time went back"), std::string::npos) << status_.last->last_error;
+  EXPECT_TRUE(d->stop_cleanly());
+}
+
+// Issue 18 item 1: a reset on request (the robot carried to another stair)
+// drops the model, says so in the status, and the next observation starts a
+// new one; an unknown command is counted as invalid and changes nothing.
+TEST_F(TrackerFaults, AResetCommandDropsTheModelAndSaysSo) {
+  std::unique_ptr<test::DaemonProcess> d;
+  ASSERT_NO_FATAL_FAILURE(start(d));
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(0, 40));
+  ASSERT_GT(model(39).observations_fused, 10);
+  tracker_command_t cmd{};
+  cmd.utime = 1;
+  cmd.command = 7;
+  lcm_.publish(test::channel("CMD"), &cmd);
+  ASSERT_TRUE(test::pump_until(lcm_, [&] { return status_.last && status_.last->invalid == 1; }));
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(40, 41));
+  EXPECT_EQ(model(40).observations_fused, model(39).observations_fused + 1) << "an unknown command reset the model";
+  cmd.command = tracker_command_t::COMMAND_RESET;
+  cmd.reason = "operator: new stair";
+  lcm_.publish(test::channel("CMD"), &cmd);
+  ASSERT_TRUE(test::pump_until(lcm_, [&] {
+    return status_.last && status_.last->last_error.find("model reset on request: operator: new stair") != std::string::npos;
+  }));
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(41, 60));
+  EXPECT_EQ(model(41).observations_fused, 1) << model(41).status;
+  EXPECT_FALSE(model(59).flights.empty()) << "the new model is confirmed again";
+  EXPECT_TRUE(d->stop_cleanly());
+}
+
+// Issue 18 item 10: every model also goes out without its plane samples, under
+// 2 KB, with the same steps and camera.
+TEST_F(TrackerFaults, EveryModelHasAStepsOnlyTwinUnderTwoKilobytes) {
+  std::unique_ptr<test::DaemonProcess> d;
+  ASSERT_NO_FATAL_FAILURE(start(d));
+  ASSERT_NO_FATAL_FAILURE(send_and_expect(0, 60));
+  ASSERT_TRUE(test::pump_until(lcm_, [&] { return models_.steps_only.size() == 60; }));
+  size_t steps_seen = 0;
+  for (int seq = 0; seq < 60; ++seq) {
+    const StairModel& full = models_.by_seq.at(seq);
+    const auto& [twin, bytes] = models_.steps_only.at(seq);
+    EXPECT_LT(bytes, 2048) << "observation " << seq;
+    EXPECT_TRUE(twin.planes.empty());
+    ASSERT_EQ(twin.flights.size(), full.flights.size());
+    for (size_t f = 0; f < full.flights.size(); ++f) {
+      ASSERT_EQ(twin.flights[f].steps.size(), full.flights[f].steps.size());
+      for (size_t k = 0; k < full.flights[f].steps.size(); ++k) {
+        EXPECT_EQ(twin.flights[f].steps[k].nosing_m, full.flights[f].steps[k].nosing_m);
+        ++steps_seen;
+      }
+    }
+    EXPECT_EQ(twin.camera_position_m, full.camera_position_m);
+  }
+  EXPECT_GT(steps_seen, 60u);
+  EXPECT_EQ(models_.bad, 0);
   EXPECT_TRUE(d->stop_cleanly());
 }
 

@@ -1,4 +1,5 @@
-// stairs-tracker: STAIRS_OBSERVATION in, STAIRS_MODEL out on every observation.
+// stairs-tracker: STAIRS_OBSERVATION in, STAIRS_MODEL (and its steps-only twin
+// STAIRS_MODEL_STEPS) out on every observation; reset on STAIRS_TRACKER_COMMAND.
 // Thin: decode, validate, Tracker::update, encode, publish, report status.
 #include "common/daemon.hpp"
 #include "common/lcm_bridge.hpp"
@@ -16,6 +17,7 @@ struct Handler {
   lcm::LCM* lcm;
   stairs::StatusReporter* status;
   std::string model_channel;
+  std::string steps_channel;  // empty = not published
 
   void on_observation(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     status->received();
@@ -35,7 +37,26 @@ struct Handler {
     }
     const stairs::stair_model_t out = stairs::to_lcm(model, stairs::now_utime(), obs.source_utime, obs.source_seq);
     lcm->publish(model_channel, &out);
+    if (!steps_channel.empty()) {
+      const stairs::stair_model_t steps = stairs::steps_only(out);
+      lcm->publish(steps_channel, &steps);
+    }
     status->published(model.update_latency_ms);
+  }
+
+  void on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    stairs::tracker_command_t msg;
+    std::string error;
+    if (!stairs::decode_message(rbuf->data, rbuf->data_size, msg, error)) {
+      status->invalid("command: " + error);
+      return;
+    }
+    if (msg.command != stairs::tracker_command_t::COMMAND_RESET) {
+      status->invalid("command: unknown command " + std::to_string(msg.command) + " (1 = reset)");
+      return;
+    }
+    tracker->reset();
+    status->event("model reset on request" + (msg.reason.empty() ? std::string() : ": " + msg.reason));
   }
 
   void on_odometry(const lcm::ReceiveBuffer* rbuf, const std::string&) {
@@ -62,6 +83,10 @@ int main(int argc, char** argv) {
   opts.add("lcm-url", "URL", "LCM URL (empty = LCM's default)", "")
       .add("observation-channel", "NAME", "channel of stair_observation_t input", "STAIRS_OBSERVATION")
       .add("model-channel", "NAME", "channel of stair_model_t output", "STAIRS_MODEL")
+      .add("steps-channel", "NAME",
+           "channel of the same model without plane samples (about 1 KB, for Wi-Fi links); empty = off",
+           "STAIRS_MODEL_STEPS")
+      .add("command-channel", "NAME", "channel of tracker_command_t requests (reset)", "STAIRS_TRACKER_COMMAND")
       .add("odometry-channel", "NAME", "channel of optional odometry (pose_t, bot_core.pose_t's layout)",
            "STAIRS_ODOMETRY")
       .add("status-channel", "NAME", "channel of daemon_status_t", "STAIRS_STATUS")
@@ -88,9 +113,10 @@ int main(int argc, char** argv) {
   stairs::install_stop_signals();
   stairs::Tracker tracker(config);
   stairs::StatusReporter status(&lcm, "stairs-tracker", opts.get("status-channel"), opts.flag("verbose"));
-  Handler handler{&tracker, &lcm, &status, opts.get("model-channel")};
+  Handler handler{&tracker, &lcm, &status, opts.get("model-channel"), opts.get("steps-channel")};
   lcm.subscribe(opts.get("observation-channel"), &Handler::on_observation, &handler);
   lcm.subscribe(opts.get("odometry-channel"), &Handler::on_odometry, &handler);
+  lcm.subscribe(opts.get("command-channel"), &Handler::on_command, &handler);
   while (!stairs::stop_requested()) {
     // A stop signal interrupts the wait: that is no failure.
     if (lcm.handleTimeout(100) < 0 && !stairs::stop_requested()) {
