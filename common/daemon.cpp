@@ -46,6 +46,13 @@ Options& Options::add(const std::string& name, const std::string& value_name, co
   return *this;
 }
 
+Options& Options::config_options(const std::string& sections) {
+  add("config", "FILE",
+      "config file {\"perception\": {...}, \"tracker\": {...}}, any subset of the keys (config/default.json "
+      "has them all); this program reads " + sections);
+  return add("print-config", "", "print the effective config as JSON (the file's layout) and exit");
+}
+
 Options& Options::positional(const std::string& name, const std::string& help, bool required) {
   positional_help_.push_back({name, help});
   if (required) ++required_positionals_;

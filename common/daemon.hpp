@@ -23,6 +23,9 @@ class Options {
   Options& add(const std::string& name, const std::string& value_name, const std::string& help,
                const std::string& default_value = "");
   Options& positional(const std::string& name, const std::string& help, bool required = true);
+  // --config FILE (the one config file, common/config_file.hpp) and --print-config,
+  // the same in every program; `sections` names what this program reads.
+  Options& config_options(const std::string& sections);
   // Parses argv; prints help and exits 0 on --help or -h, the program and the
   // project's version on --version; prints an error and exits 2 on a bad option.
   void parse(int argc, char** argv);

@@ -2,6 +2,8 @@
 // Pixel counts are given for 640x480 and scaled with the frame's resolution.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 
 namespace stairs {
@@ -40,6 +42,38 @@ struct VerificationConfig {
   float run_outlier_m = 0.12f;        // m; likewise one run
   int regular_steps_for_an_outlier = 3;  // measured rises (runs) within tolerance that allow one outlier
   float min_run_m = 0.138f;           // m; a shorter measured run is no tread (DIN's 0.23 m less its tolerance)
+
+  template <class V>
+  void visit(V& v) {
+    v("riser_support", riser_support);
+    v("foot_support", foot_support);
+    v("widths", widths);
+    v("alignment", alignment);
+    v("regularity", regularity);
+    v("lateral_samples", lateral_samples, 1, 64);
+    v("vertical_samples", vertical_samples, 1, 64);
+    v("lateral_margin", lateral_margin, 0.0f, 0.49f);
+    v("vertical_margin", vertical_margin, 0.0f, 0.49f);
+    v("max_nosing_overhang_m", max_nosing_overhang_m, 0.0f, 0.5f);
+    v("min_probe_elevation_deg", min_probe_elevation_deg, 0.0f, 90.0f);
+    v("probe_offset_m", probe_offset_m, 0.001f, 1.0f);
+    v("probe_depth_m", probe_depth_m, 0.001f, 2.0f);
+    v("solid_tolerance_m", solid_tolerance_m, 0.001f, 1.0f);
+    v("solid_tolerance_per_m2", solid_tolerance_per_m2, 0.0f, 1.0f);
+    v("max_see_through", max_see_through, 0.0f, 1.0f);
+    v("min_decided_probes", min_decided_probes, 1, 4096);
+    v("border_margin_px", border_margin_px, 0.0f, 320.0f);
+    v("end_offset_m", end_offset_m, 0.0f, 1.0f);
+    v("min_width_ratio", min_width_ratio, 0.0f, 1.0f);
+    v("min_lateral_overlap", min_lateral_overlap, 0.0f, 1.0f);
+    v("max_riser_yaw_spread_deg", max_riser_yaw_spread_deg, 0.01f, 90.0f);
+    v("rise_tolerance_m", rise_tolerance_m, 0.001f, 1.0f);
+    v("run_tolerance_m", run_tolerance_m, 0.001f, 1.0f);
+    v("rise_outlier_m", rise_outlier_m, 0.001f, 1.0f);
+    v("run_outlier_m", run_outlier_m, 0.001f, 1.0f);
+    v("regular_steps_for_an_outlier", regular_steps_for_an_outlier, 2, 64);
+    v("min_run_m", min_run_m, 0.0f, 2.0f);
+  }
 };
 
 // --- imu (perception/imu_gravity.hpp): gravity from an optional IMU (issue 15)
@@ -60,110 +94,299 @@ struct ImuConfig {
                                      // treads measure it better than a walking IMU
   float max_disagreement_deg = 10.0f;  // deg; an IMU farther than this from the planes is rejected (a
                                        // wrong mount rotation, a broken IMU): no ramp people walk is steeper
+
+  template <class V>
+  void visit(V& v) {
+    v("to_camera_roll_deg", to_camera_roll_deg, -360.0f, 360.0f);
+    v("to_camera_pitch_deg", to_camera_pitch_deg, -360.0f, 360.0f);
+    v("to_camera_yaw_deg", to_camera_yaw_deg, -360.0f, 360.0f);
+    v("time_constant_s", time_constant_s, 0.001f, 1000.0f);
+    v("max_force_deviation", max_force_deviation, 0.001f, 0.999f);
+    v("max_age_s", max_age_s, 0.001f, 10.0f);
+    v("warmup_s", warmup_s, 0.0f, 100.0f);
+    v("plane_agreement_deg", plane_agreement_deg, 0.0f, 90.0f);
+    v("max_disagreement_deg", max_disagreement_deg, 0.01f, 90.0f);
+  }
 };
 
-struct PerceptionConfig {
-  // --- normals: organized grid of cell means, normals by neighbour cross products
+// --- normals (thesis 3.2): organized grid of cell means, normals by neighbour cross products
+struct NormalsConfig {
   int grid_cell_px = 4;            // px at 640 wide; cell side (scaled, >= 1)
-  int normal_radius_cells = 2;     // cells; half baseline of the cross product
+  int radius_cells = 2;            // cells; half baseline of the cross product
   float max_depth_m = 5.0f;        // m; farther measurements are ignored
-  float min_depth_m = 0.3f;        // m
+  float min_depth_m = 0.3f;        // m; nearer ones too (below every sensor's minimum range)
   float jump_ratio = 0.05f;        // |dz| / z above which two cells are not neighbours (and
                                    // pixels of one cell not on its nearest surface)
   float cell_min_valid_fraction = 0.5f;  // of a cell's pixels on its nearest surface, else no point
   float cell_valid_fraction_range_m = 1.5f;  // m; beyond, that fraction falls as 1/depth (dropout)
   float inverse_depth_kink_per_m = 0.008f;  // 1/m; |1/z_l + 1/z_r - 2/z_c| above this = a corner or
                                              // jump between (1/z is affine in the image on a plane)
-  bool smooth_normals = true;      // 3x3 mean of the normals
+  bool smooth = true;              // 3x3 mean of the normals
 
-  // --- region_growing: "last normal" model (over-segments, never under-segments)
-  float grow_angle_deg = 15.0f;      // max angle between neighbouring normals
-  float grow_region_angle_deg = 20.0f;  // max angle to the region's mean normal (no leak round corners)
-  float grow_distance_m = 0.01f;     // max point-to-plane distance to the last cell at 1 m (x z^2)
-  float grow_max_distance_m = 0.03f;  // cap of that distance: a riser seen from above never joins
-  int min_plane_px_320 = 100;        // px at 320x240; smaller planes are dropped (scaled)
-
-  // --- gravity (Algorithm 4, weighted horizontal normals)
-  float max_tilt_from_image_up_deg = 80.0f;  // horizontal-plane candidates vs. image up
-  float parallel_deg = 4.0f;                 // normals this close count as parallel
-  float gravity_prior_max_deg = 20.0f;        // up may turn this much from the previous frame's
-  double gravity_prior_max_gap_s = 1.0;       // s; after a longer gap the previous up is forgotten
-  float gravity_min_support_fraction = 0.1f;  // with a prior: treads with less support than this
-                                              // fraction of the largest vertical family yield to it
-  float beneath_view_edge_margin_m = 0.1f;   // m; a surface whose near edge is this close to where
-  float beneath_view_edge_tolerance = 0.15f;  // (+ this fraction) the image's bottom row meets its
-                                              // height runs on beneath the camera
-  float beneath_same_level_m = 0.04f;         // m; a surface this close to the flight's first level is that level
-
-  // --- edges_depth_jumps
-  float edge_jump_min_m = 0.05f;        // m; depth step between vertical neighbours that is a jump
-  float edge_jump_ratio = 0.03f;        // of the depth; the jump must exceed this too (noise grows)
-  int edge_gap_cells = 2;               // cells without a measurement a jump may span (shadow)
-  float edge_height_gap_m = 0.02f;      // m; jump points chain into one height group below this
-  float edge_ransac_threshold_m = 0.02f;  // m; RANSAC line inlier distance
-  int edge_ransac_iterations = 100;
-  int edge_min_points = 8;              // jump points of a line
-  int edge_max_lines_per_group = 3;     // lines fitted per height group
-  float edge_max_tilt_deg = 10.0f;      // a step edge is horizontal within this
-  float edge_max_axis_deg = 20.0f;      // and across the stair axis within this
-
-  // --- edges_normal_image (thesis 3.4.1): gravity-aligned normals as colours, Canny, contours, Hough
-  int normal_edge_blur_cells = 1;         // cells; Gaussian blur radius before Canny: the two edges of a
-                                          // rounded nosing's band of in-between normals become one
-  float normal_edge_canny_low = 100.0f;   // Canny hysteresis thresholds on the 3x3 Sobel L1 gradient
-  float normal_edge_canny_high = 200.0f;  // of the 8-bit normal image (a sharp 90 deg bend gives ~500)
-  float normal_edge_min_contour_px = 32.0f;  // px at 640x480; shorter edge curves (their span) are noise
-  float normal_edge_hough_theta_deg = 1.0f;  // deg; Hough angle resolution (rho: one grid cell)
-  float normal_edge_hough_votes_px = 32.0f;  // px at 640x480; edge pixels on a line for a Hough line
-  float normal_edge_hough_min_length_px = 48.0f;  // px at 640x480; shorter Hough segments are dropped
-  float normal_edge_hough_max_gap_px = 12.0f;     // px at 640x480; gaps bridged along a Hough segment
-  int normal_edge_side_cells = 2;           // cells; strip on each side of a line giving its two surfaces
-  float normal_edge_min_bend_deg = 30.0f;   // deg; the surfaces on the two sides turn by at least this
-  float normal_edge_max_tilt_deg = 10.0f;   // deg; a step edge is horizontal within this
-  float normal_edge_max_axis_deg = 20.0f;   // deg; and across the stair axis within this
-  float normal_edge_max_range_m = 4.0f;     // m; farther edges are dropped (far normals are noisy)
-  float normal_edge_merge_bin_m = 0.05f;    // m; merge histogram bin of horizontal distance and height
-  float normal_edge_merge_bin_deg = 10.0f;  // deg; merge histogram bin of direction (step edges are all
-                                            // parallel: position tells them apart, short pieces vary)
-
-  // --- plane_geometry
-  float horizontal_tol_deg = 12.0f;   // tread/landing: normal within this of up
-  float vertical_tol_deg = 15.0f;     // riser: normal within this of horizontal
-  float merge_bin_m = 0.05f;          // height/depth histogram bin
-  float merge_gap_m = 0.15f;          // m; same-bin planes merge when this close in the plane
-  float extent_percentile = 0.02f;    // fraction trimmed at each end of an extent
-
-  // --- steps and grammar (DIN 18065 with tolerance)
-  float riser_min_m = 0.14f;
-  float riser_max_m = 0.20f;
-  float tread_min_m = 0.23f;
-  float tread_max_m = 0.37f;
-  float step_rule_min_m = 0.59f;      // 2R + T lower bound
-  float step_rule_max_m = 0.65f;      // 2R + T upper bound
-  float din_tolerance = 0.4f;         // relative tolerance on every DIN bound
-  float level_max_spread_of_rise = 0.5f;  // of the rise: a level's heights reach at most this far towards
-                                          // the next (a tread is level within noise; a ramp is not)
-  float landing_min_depth_m = 0.50f;  // a tread deeper than this is a landing
-  float min_step_width_m = 0.3f;      // m; narrower horizontal planes (chair seats) are no treads
-  float max_lateral_gap_m = 0.5f;     // m; consecutive treads must overlap laterally up to this gap
-  float min_riser_seen_fraction = 0.1f;   // of the median rise: a riser standing on the last
-                                          // tread, its top cut off by the view, still gives a step
-  int min_steps = 2;                  // fewer detected steps = no staircase
-
-  // --- verification: JSON object "verification" with the keys of VerificationConfig
-  VerificationConfig verification;
-  // --- imu: JSON object "imu" with the keys of ImuConfig
-  ImuConfig imu;
-
-  // --- observation
-  int max_sample_points = 1024;  // per tread/riser, spatially even grid subsample
-  int max_other_points = 64;     // per other plane
-  int max_planes = 64;           // segmented planes reported (<= 192), treads/risers first
-  int max_edges = 256;           // edges reported (<= 256), depth-jump edges first
+  template <class V>
+  void visit(V& v) {
+    v("grid_cell_px", grid_cell_px, 1, 64);
+    v("radius_cells", radius_cells, 1, 16);
+    v("max_depth_m", max_depth_m, 0.1f, 100.0f);
+    v("min_depth_m", min_depth_m, 0.0f, 100.0f);
+    v("jump_ratio", jump_ratio, 0.0f, 1.0f);
+    v("cell_min_valid_fraction", cell_min_valid_fraction, 0.01f, 1.0f);
+    v("cell_valid_fraction_range_m", cell_valid_fraction_range_m, 0.01f, 100.0f);
+    v("inverse_depth_kink_per_m", inverse_depth_kink_per_m, 0.0f, 10.0f);
+    v("smooth", smooth);
+  }
 };
 
-// Reads a JSON object of parameters (any subset). Throws std::runtime_error
-// naming the file and key on an unknown key, a wrong type or an unreadable file.
-PerceptionConfig load_perception_config(const std::string& json_path);
+// --- region_growing (thesis 3.3): "last normal" model (over-segments, never under-segments)
+struct RegionGrowingConfig {
+  float angle_deg = 15.0f;         // deg; max angle between neighbouring normals
+  float region_angle_deg = 20.0f;  // deg; max angle to the region's mean normal (no leak round corners)
+  float distance_m = 0.01f;        // m; max point-to-plane distance to the last cell at 1 m (x z^2)
+  float max_distance_m = 0.03f;    // m; cap of that distance: a riser seen from above never joins
+  float distance_floor_m = 0.004f;  // m; added to that distance: depth quantisation of near cells
+  int min_plane_px_320 = 100;      // px at 320x240; smaller planes are dropped (scaled)
+
+  template <class V>
+  void visit(V& v) {
+    v("angle_deg", angle_deg, 0.0f, 90.0f);
+    v("region_angle_deg", region_angle_deg, 0.0f, 90.0f);
+    v("distance_m", distance_m, 0.0f, 1.0f);
+    v("max_distance_m", max_distance_m, 0.0f, 1.0f);
+    v("distance_floor_m", distance_floor_m, 0.0f, 0.1f);
+    v("min_plane_px_320", min_plane_px_320, 1, 76800);
+  }
+};
+
+// --- gravity (thesis Algorithm 4): up from weighted horizontal normals
+struct GravityConfig {
+  float max_tilt_from_image_up_deg = 80.0f;  // deg; horizontal-plane candidates vs. image up
+  float parallel_deg = 4.0f;                 // deg; normals this close count as parallel
+  float prior_max_deg = 20.0f;               // deg; up may turn this much from the previous frame's
+  double prior_max_gap_s = 1.0;              // s; after a longer gap the previous up is forgotten
+  float min_support_fraction = 0.1f;         // with a prior: treads with less support than this
+                                             // fraction of the largest vertical family yield to it
+  float second_family_min_angle_deg = 30.0f;  // deg; a second vertical family (risers and a wall) must
+                                              // turn this far from the first for up = their cross product
+
+  template <class V>
+  void visit(V& v) {
+    v("max_tilt_from_image_up_deg", max_tilt_from_image_up_deg, 0.0f, 90.0f);
+    v("parallel_deg", parallel_deg, 0.0f, 45.0f);
+    v("prior_max_deg", prior_max_deg, 0.0f, 180.0f);
+    v("prior_max_gap_s", prior_max_gap_s, 0.0, 3600.0);
+    v("min_support_fraction", min_support_fraction, 0.0f, 1.0f);
+    v("second_family_min_angle_deg", second_family_min_angle_deg, 1.0f, 90.0f);
+  }
+};
+
+// --- camera_height (perception/camera_height.hpp): only where the surface beneath is verifiable
+struct CameraHeightConfig {
+  float view_edge_margin_m = 0.1f;   // m; a surface whose near edge is this close to where the
+  float view_edge_tolerance = 0.15f;  // (+ this fraction) the image's bottom row meets its height
+                                      // runs on beneath the camera
+
+  template <class V>
+  void visit(V& v) {
+    v("view_edge_margin_m", view_edge_margin_m, 0.0f, 10.0f);
+    v("view_edge_tolerance", view_edge_tolerance, 0.0f, 10.0f);
+  }
+};
+
+// --- edges_depth_jumps (thesis 3.4.2): step edges where depth jumps
+struct DepthJumpEdgesConfig {
+  float jump_min_m = 0.05f;        // m; depth step between vertical neighbours that is a jump
+  float jump_ratio = 0.03f;        // of the depth; the jump must exceed this too (noise grows)
+  int gap_cells = 2;               // cells without a measurement a jump may span (shadow)
+  float height_gap_m = 0.02f;      // m; jump points chain into one height group below this
+  float ransac_threshold_m = 0.02f;  // m; RANSAC line inlier distance
+  int ransac_iterations = 100;     // RANSAC draws per height group
+  int min_points = 8;              // jump points of a line
+  int max_lines_per_group = 3;     // lines fitted per height group
+  float max_tilt_deg = 10.0f;      // deg; a step edge is horizontal within this
+  float max_axis_deg = 20.0f;      // deg; and across the stair axis within this
+
+  template <class V>
+  void visit(V& v) {
+    v("jump_min_m", jump_min_m, 0.0f, 10.0f);
+    v("jump_ratio", jump_ratio, 0.0f, 1.0f);
+    v("gap_cells", gap_cells, 0, 64);
+    v("height_gap_m", height_gap_m, 0.0f, 1.0f);
+    v("ransac_threshold_m", ransac_threshold_m, 0.0f, 1.0f);
+    v("ransac_iterations", ransac_iterations, 1, 100000);
+    v("min_points", min_points, 2, 100000);
+    v("max_lines_per_group", max_lines_per_group, 1, 100);
+    v("max_tilt_deg", max_tilt_deg, 0.0f, 90.0f);
+    v("max_axis_deg", max_axis_deg, 0.0f, 90.0f);
+  }
+};
+
+// --- edges_normal_image (thesis 3.4.1): gravity-aligned normals as colours, Canny, contours, Hough
+struct NormalImageEdgesConfig {
+  int blur_cells = 1;              // cells; Gaussian blur radius before Canny: the two edges of a
+                                   // rounded nosing's band of in-between normals become one
+  float canny_low = 100.0f;        // Canny hysteresis thresholds on the 3x3 Sobel L1 gradient
+  float canny_high = 200.0f;       // of the 8-bit normal image (a sharp 90 deg bend gives ~500)
+  float min_contour_px = 32.0f;    // px at 640x480; shorter edge curves (their span) are noise
+  float hough_theta_deg = 1.0f;    // deg; Hough angle resolution (rho: one grid cell)
+  float hough_votes_px = 32.0f;    // px at 640x480; edge pixels on a line for a Hough line
+  float hough_min_length_px = 48.0f;  // px at 640x480; shorter Hough segments are dropped
+  float hough_max_gap_px = 12.0f;     // px at 640x480; gaps bridged along a Hough segment
+  int side_cells = 2;              // cells; strip on each side of a line giving its two surfaces
+  float min_bend_deg = 30.0f;      // deg; the surfaces on the two sides turn by at least this
+  float max_tilt_deg = 10.0f;      // deg; a step edge is horizontal within this
+  float max_axis_deg = 20.0f;      // deg; and across the stair axis within this
+  float max_range_m = 4.0f;        // m; farther edges are dropped (far normals are noisy)
+  float merge_bin_m = 0.05f;       // m; merge histogram bin of horizontal distance and height
+  float merge_bin_deg = 10.0f;     // deg; merge histogram bin of direction (step edges are all
+                                   // parallel: position tells them apart, short pieces vary)
+
+  template <class V>
+  void visit(V& v) {
+    v("blur_cells", blur_cells, 0, 16);
+    v("canny_low", canny_low, 0.0f, 2000.0f);
+    v("canny_high", canny_high, 0.0f, 2000.0f);
+    v("min_contour_px", min_contour_px, 0.0f, 4096.0f);
+    v("hough_theta_deg", hough_theta_deg, 0.01f, 45.0f);
+    v("hough_votes_px", hough_votes_px, 1.0f, 4096.0f);
+    v("hough_min_length_px", hough_min_length_px, 0.0f, 4096.0f);
+    v("hough_max_gap_px", hough_max_gap_px, 0.0f, 4096.0f);
+    v("side_cells", side_cells, 1, 16);
+    v("min_bend_deg", min_bend_deg, 0.0f, 180.0f);
+    v("max_tilt_deg", max_tilt_deg, 0.0f, 90.0f);
+    v("max_axis_deg", max_axis_deg, 0.0f, 90.0f);
+    v("max_range_m", max_range_m, 0.0f, 100.0f);
+    v("merge_bin_m", merge_bin_m, 0.001f, 10.0f);
+    v("merge_bin_deg", merge_bin_deg, 0.01f, 180.0f);
+  }
+};
+
+// --- plane_geometry (thesis 3.5): treads, risers and others; merging; extents
+struct PlaneGeometryConfig {
+  float horizontal_tol_deg = 12.0f;  // deg; tread/landing: normal within this of up
+  float vertical_tol_deg = 15.0f;    // deg; riser: normal within this of horizontal
+  float parallel_deg = 4.0f;          // deg; vertical planes this parallel are one family, merged by depth
+  float axis_riser_max_deg = 60.0f;   // deg; vertical planes facing the camera within this give the stair axis
+  float merge_bin_m = 0.05f;         // m; height/depth histogram bin
+  float extent_percentile = 0.02f;   // fraction trimmed at each end of an extent
+  float view_edge_band_m = 0.02f;    // m; cells this close to a plane's top (bottom) height are its top
+                                     // (bottom) row: in the grid's margin, the plane may go on out of view
+
+  template <class V>
+  void visit(V& v) {
+    v("horizontal_tol_deg", horizontal_tol_deg, 0.0f, 45.0f);
+    v("vertical_tol_deg", vertical_tol_deg, 0.0f, 45.0f);
+    v("parallel_deg", parallel_deg, 0.0f, 45.0f);
+    v("axis_riser_max_deg", axis_riser_max_deg, 0.0f, 90.0f);
+    v("merge_bin_m", merge_bin_m, 0.001f, 1.0f);
+    v("extent_percentile", extent_percentile, 0.0f, 0.49f);
+    v("view_edge_band_m", view_edge_band_m, 0.0f, 1.0f);
+  }
+};
+
+// --- stair: the step model of steps, grammar and reconstruction (thesis 4; DIN 18065 with tolerance)
+struct StairConfig {
+  float riser_min_m = 0.14f;         // m; DIN 18065 rise bounds
+  float riser_max_m = 0.20f;
+  float tread_min_m = 0.23f;         // m; DIN 18065 going bounds
+  float tread_max_m = 0.37f;
+  float step_rule_min_m = 0.59f;     // m; 2R + T lower bound (step rule)
+  float step_rule_max_m = 0.65f;     // m; 2R + T upper bound
+  float din_tolerance = 0.4f;        // relative tolerance on every DIN bound (old and odd flights)
+  float level_max_spread_of_rise = 0.5f;  // of the rise: a level's heights reach at most this far towards
+                                          // the next (a tread is level within noise; a ramp is not)
+  float landing_min_depth_m = 0.50f;  // m; a tread deeper than this is a landing
+  float min_step_width_m = 0.3f;     // m; narrower horizontal planes (chair seats) are no treads
+  float max_lateral_gap_m = 0.5f;    // m; consecutive treads must overlap laterally up to this gap
+  float min_riser_seen_fraction = 0.1f;  // of the median rise: a riser standing on the last
+                                         // tread, its top cut off by the view, still gives a step
+  int min_steps = 2;                 // fewer detected steps = no staircase
+  float same_level_m = 0.04f;        // m; a tread and a riser's top (or a depth jump) this close in height
+                                     // are one level (noise of a tread's mean height at range)
+  float riser_own_behind_m = 0.1f;   // m; a tread from this far behind a riser's face ...
+  float riser_own_ahead_m = 0.4f;    // ... to this far ahead of it is that riser's own (about a run)
+  float riser_at_nosing_m = 0.1f;    // m; a segmented riser this close to a level's front edge is its step's
+  float riser_contact_m = 0.06f;     // m; a riser's bottom (top) this close to a level stands on (reaches) it
+  float max_level_gap_m = 0.3f;      // m; a level ends this close to where the next one starts (the riser
+                                     // between, its occluded strip)
+
+  template <class V>
+  void visit(V& v) {
+    v("riser_min_m", riser_min_m, 0.0f, 1.0f);
+    v("riser_max_m", riser_max_m, 0.0f, 1.0f);
+    v("tread_min_m", tread_min_m, 0.0f, 2.0f);
+    v("tread_max_m", tread_max_m, 0.0f, 2.0f);
+    v("step_rule_min_m", step_rule_min_m, 0.0f, 4.0f);
+    v("step_rule_max_m", step_rule_max_m, 0.0f, 4.0f);
+    v("din_tolerance", din_tolerance, 0.0f, 1.0f);
+    v("level_max_spread_of_rise", level_max_spread_of_rise, 0.01f, 1.0f);
+    v("landing_min_depth_m", landing_min_depth_m, 0.0f, 10.0f);
+    v("min_step_width_m", min_step_width_m, 0.0f, 10.0f);
+    v("max_lateral_gap_m", max_lateral_gap_m, 0.0f, 10.0f);
+    v("min_riser_seen_fraction", min_riser_seen_fraction, 0.0f, 1.0f);
+    v("min_steps", min_steps, 1, 64);
+    v("same_level_m", same_level_m, 0.0f, 1.0f);
+    v("riser_own_behind_m", riser_own_behind_m, 0.0f, 2.0f);
+    v("riser_own_ahead_m", riser_own_ahead_m, 0.0f, 2.0f);
+    v("riser_at_nosing_m", riser_at_nosing_m, 0.0f, 1.0f);
+    v("riser_contact_m", riser_contact_m, 0.0f, 1.0f);
+    v("max_level_gap_m", max_level_gap_m, 0.0f, 5.0f);
+  }
+};
+
+// --- output: what an observation carries (stair_observation_t caps)
+struct OutputConfig {
+  int max_sample_points = 1024;  // per tread/riser, spatially even grid subsample
+  int max_other_points = 64;     // per other plane
+  int max_planes = 64;           // segmented planes reported, treads/risers first
+  int max_edges = 256;           // edges reported, depth-jump edges first
+
+  template <class V>
+  void visit(V& v) {
+    v("max_sample_points", max_sample_points, 1, 1024);
+    v("max_other_points", max_other_points, 0, 1024);
+    v("max_planes", max_planes, 1, 192);
+    v("max_edges", max_edges, 0, 256);
+  }
+};
+
+// The whole pipeline: one section per stage, read by that stage only.
+struct PerceptionConfig {
+  NormalsConfig normals;
+  RegionGrowingConfig region_growing;
+  GravityConfig gravity;
+  ImuConfig imu;
+  PlaneGeometryConfig plane_geometry;
+  DepthJumpEdgesConfig edges_depth_jumps;
+  NormalImageEdgesConfig edges_normal_image;
+  StairConfig stair;
+  VerificationConfig verification;
+  CameraHeightConfig camera_height;
+  OutputConfig output;
+
+  template <class V>
+  void visit(V& v) {
+    v.section("normals", normals);
+    v.section("region_growing", region_growing);
+    v.section("gravity", gravity);
+    v.section("imu", imu);
+    v.section("plane_geometry", plane_geometry);
+    v.section("edges_depth_jumps", edges_depth_jumps);
+    v.section("edges_normal_image", edges_normal_image);
+    v.section("stair", stair);
+    v.section("verification", verification);
+    v.section("camera_height", camera_height);
+    v.section("output", output);
+  }
+};
+
+// The "perception" object of a config (any subset of the sections and their
+// keys). Throws std::runtime_error naming `file`, the key and its allowed range
+// on an unknown key, a wrong type, a value out of range or values that
+// contradict each other (riser_min_m above riser_max_m).
+PerceptionConfig perception_config_from_json(const nlohmann::json& object, const std::string& file);
+// The "perception" object of the config file at `path` (common/config_file.hpp); "" = defaults.
+PerceptionConfig load_perception_config(const std::string& path);
+// The effective values, as the config file's "perception" object (--print-config).
+nlohmann::ordered_json to_json(const PerceptionConfig& c);
 
 }  // namespace stairs

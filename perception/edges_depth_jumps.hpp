@@ -23,8 +23,8 @@ struct JumpEdge {
 // cell above it in the image), rotated by `gravity` (optical -> gravity-aligned)
 // and grouped by height; RANSAC fits a line to each group. Lines that are not
 // horizontal, not across the stair axis (`yaw_rad`) or shorter than
-// cfg.min_step_width_m are dropped. Sorted by height, highest first.
+// `min_length_m` (the narrowest step) are dropped. Sorted by height, highest first.
 std::vector<JumpEdge> depth_jump_edges(const NormalGrid& grid, const Eigen::Matrix3f& gravity, float yaw_rad,
-                                       const PerceptionConfig& cfg);
+                                       const DepthJumpEdgesConfig& cfg, float min_length_m);
 
 }  // namespace stairs

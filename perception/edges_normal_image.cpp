@@ -17,8 +17,8 @@ const float kDeg = static_cast<float>(M_PI) / 180.0f;
 
 // Lengths are configured in px at 640x480; the grid has 640 / grid_cell_px
 // columns at every resolution.
-int to_cells(float px_640, const PerceptionConfig& cfg) {
-  return std::max(1, static_cast<int>(std::lround(px_640 / cfg.grid_cell_px)));
+int to_cells(float px_640, int grid_cell_px_640) {
+  return std::max(1, static_cast<int>(std::lround(px_640 / grid_cell_px_640)));
 }
 
 // Thesis eq. 3.7: each component of the gravity-aligned normal, [-1, 1] ->
@@ -43,16 +43,17 @@ void draw_normal_image(const NormalGrid& g, const Eigen::Matrix3f& R, cv::Mat& c
 // an unmeasured cell outline holes and depth jumps and are dropped. Only edge
 // curves (contours) spanning normal_edge_min_contour_px are kept: the thesis
 // cleans the Hough input of short noise edges this way.
-cv::Mat bend_edges(const cv::Mat& colour, const cv::Mat& unmeasured, const PerceptionConfig& cfg) {
+cv::Mat bend_edges(const cv::Mat& colour, const cv::Mat& unmeasured, const NormalImageEdgesConfig& cfg,
+                   int grid_cell_px_640) {
   cv::Mat blurred, edges, near_hole;
-  const int blur = 2 * cfg.normal_edge_blur_cells + 1;
+  const int blur = 2 * cfg.blur_cells + 1;
   cv::GaussianBlur(colour, blurred, cv::Size(blur, blur), 0);
-  cv::Canny(blurred, edges, cfg.normal_edge_canny_low, cfg.normal_edge_canny_high);
+  cv::Canny(blurred, edges, cfg.canny_low, cfg.canny_high);
   cv::dilate(unmeasured, near_hole, cv::Mat());
   edges.setTo(0, near_hole);
   std::vector<std::vector<cv::Point>> contours;
   cv::findContours(edges, contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
-  const int min_span = to_cells(cfg.normal_edge_min_contour_px, cfg);
+  const int min_span = to_cells(cfg.min_contour_px, grid_cell_px_640);
   cv::Mat kept = cv::Mat::zeros(edges.size(), CV_8U);
   for (size_t i = 0; i < contours.size(); ++i) {
     const cv::Rect box = cv::boundingRect(contours[i]);
@@ -61,9 +62,9 @@ cv::Mat bend_edges(const cv::Mat& colour, const cv::Mat& unmeasured, const Perce
   return kept;
 }
 
-bool horizontal_across(const Eigen::Vector3f& dir, const Eigen::Vector3f& axis, const PerceptionConfig& cfg) {
-  return std::abs(dir.z()) <= std::sin(cfg.normal_edge_max_tilt_deg * kDeg) &&
-         std::abs(dir.dot(axis)) <= std::sin(cfg.normal_edge_max_axis_deg * kDeg);
+bool horizontal_across(const Eigen::Vector3f& dir, const Eigen::Vector3f& axis, const NormalImageEdgesConfig& cfg) {
+  return std::abs(dir.z()) <= std::sin(cfg.max_tilt_deg * kDeg) &&
+         std::abs(dir.dot(axis)) <= std::sin(cfg.max_axis_deg * kDeg);
 }
 
 // The cells under one or more Hough segments and where their two surfaces meet.
@@ -116,7 +117,7 @@ void fit(Line& l, const Eigen::Vector3f& axis, int cell_px) {
 // the surfaces' intersection or the cells' line is not horizontal and across
 // the stair axis.
 std::optional<Line> back_project(const NormalGrid& g, const Eigen::Matrix3f& R, const cv::Vec4i& seg,
-                                 const Eigen::Vector3f& axis, const PerceptionConfig& cfg) {
+                                 const Eigen::Vector3f& axis, const NormalImageEdgesConfig& cfg) {
   const Eigen::Vector2f a(seg[0], seg[1]), b(seg[2], seg[3]);
   const float len = (b - a).norm();
   if (!(len > 0)) return std::nullopt;
@@ -137,7 +138,7 @@ std::optional<Line> back_project(const NormalGrid& g, const Eigen::Matrix3f& R, 
       l.px.push_back(q * cell + Eigen::Vector2f::Constant(0.5f * cell));
     }
     for (int side = 0; side < 2; ++side)
-      for (int k = 1; k <= cfg.normal_edge_side_cells; ++k) {
+      for (int k = 1; k <= cfg.side_cells; ++k) {
         const int n = cell_at(q + static_cast<float>(side ? -k : k) * across);
         if (n >= 0 && g.has_normal[n]) side_cells[side].push_back(n);
       }
@@ -167,7 +168,7 @@ std::optional<Line> back_project(const NormalGrid& g, const Eigen::Matrix3f& R, 
   }
   const Eigen::Vector3f &n0 = normal[0], &n1 = normal[1], &p0 = point[0], &p1 = point[1];
   const float cos_bend = n0.dot(n1);
-  if (cos_bend > std::cos(cfg.normal_edge_min_bend_deg * kDeg) ||
+  if (cos_bend > std::cos(cfg.min_bend_deg * kDeg) ||
       !horizontal_across(n0.cross(n1).normalized(), axis, cfg))
     return std::nullopt;
   // Convex when each side lies behind the other's surface (normals face the
@@ -182,7 +183,7 @@ std::optional<Line> back_project(const NormalGrid& g, const Eigen::Matrix3f& R, 
   l.meet_sum = meet * static_cast<float>(l.points.size());
   fit(l, axis, g.cell_px);
   const Eigen::Vector3f dir = (l.edge.end - l.edge.start).normalized();
-  if (!horizontal_across(dir, axis, cfg) || meet.norm() > cfg.normal_edge_max_range_m) return std::nullopt;
+  if (!horizontal_across(dir, axis, cfg) || meet.norm() > cfg.max_range_m) return std::nullopt;
   return l;
 }
 
@@ -199,10 +200,10 @@ void absorb(Line& into, const Line& other) {
 // keys of their strongest segment, so merges do not chain across unrelated
 // lines (the thesis' locking). Merged lines are fitted anew.
 std::vector<Line> merge_lines(std::vector<Line> lines, const Eigen::Vector3f& axis, int cell_px,
-                              const PerceptionConfig& cfg) {
+                              const NormalImageEdgesConfig& cfg) {
   auto by_support = [](const Line& a, const Line& b) { return a.edge.support > b.edge.support; };
   std::sort(lines.begin(), lines.end(), by_support);
-  const float bin_deg = cfg.normal_edge_merge_bin_deg, bin_m = cfg.normal_edge_merge_bin_m;
+  const float bin_deg = cfg.merge_bin_deg, bin_m = cfg.merge_bin_m;
   auto bin = [](float v, float size) { return static_cast<int>(std::floor(v / size)); };
   std::map<std::array<int, 4>, std::vector<size_t>> bins;  // kept lines by bin
   std::vector<Line> kept;
@@ -235,23 +236,23 @@ std::vector<Line> merge_lines(std::vector<Line> lines, const Eigen::Vector3f& ax
 }  // namespace
 
 std::vector<Edge> normal_image_edges(const NormalGrid& g, const Eigen::Matrix3f& R, float yaw_rad,
-                                     const PerceptionConfig& cfg) {
+                                     const NormalImageEdgesConfig& cfg, int grid_cell_px_640, float min_length_m) {
   if (g.width < 3 || g.height < 3) return {};
   cv::Mat colour, unmeasured;
   draw_normal_image(g, R, colour, unmeasured);
-  const cv::Mat edges = bend_edges(colour, unmeasured, cfg);
+  const cv::Mat edges = bend_edges(colour, unmeasured, cfg, grid_cell_px_640);
   std::vector<cv::Vec4i> segments;
   // rho resolution: one cell, the normal image's resolution.
-  cv::HoughLinesP(edges, segments, 1.0, cfg.normal_edge_hough_theta_deg * kDeg,
-                  to_cells(cfg.normal_edge_hough_votes_px, cfg), to_cells(cfg.normal_edge_hough_min_length_px, cfg),
-                  to_cells(cfg.normal_edge_hough_max_gap_px, cfg));
+  cv::HoughLinesP(edges, segments, 1.0, cfg.hough_theta_deg * kDeg,
+                  to_cells(cfg.hough_votes_px, grid_cell_px_640), to_cells(cfg.hough_min_length_px, grid_cell_px_640),
+                  to_cells(cfg.hough_max_gap_px, grid_cell_px_640));
   const Eigen::Vector3f axis(std::cos(yaw_rad), std::sin(yaw_rad), 0.0f);
   std::vector<Line> lines;
   for (const cv::Vec4i& seg : segments)
     if (std::optional<Line> l = back_project(g, R, seg, axis, cfg)) lines.push_back(std::move(*l));
   std::vector<Edge> out;
   for (const Line& l : merge_lines(std::move(lines), axis, g.cell_px, cfg))
-    if ((l.edge.end - l.edge.start).norm() >= cfg.min_step_width_m) out.push_back(l.edge);
+    if ((l.edge.end - l.edge.start).norm() >= min_length_m) out.push_back(l.edge);
   return out;
 }
 

@@ -19,12 +19,13 @@ namespace stairs {
 // spanning at least normal_edge_min_contour_px -> probabilistic Hough lines.
 // Each line becomes the intersection of the surfaces on its two sides, along
 // the cells under it; it is kept when the surfaces bend by at least
-// normal_edge_min_bend_deg, it is horizontal and across the stair axis
-// (`yaw_rad`) and within normal_edge_max_range_m. Lines of one type close in
-// direction, distance and height merge (histogram); merged lines shorter than
-// cfg.min_step_width_m are dropped. Edges (source NormalImage, Convex or
+// cfg.min_bend_deg, it is horizontal and across the stair axis (`yaw_rad`)
+// and within cfg.max_range_m. Lines of one type close in direction, distance
+// and height merge (histogram); merged lines shorter than `min_length_m` (the
+// narrowest step) are dropped. Pixel lengths in cfg are at 640 wide, in cells
+// of `grid_cell_px_640`. Edges (source NormalImage, Convex or
 // Concave) are in the gravity-aligned camera frame, strongest first.
 std::vector<Edge> normal_image_edges(const NormalGrid& grid, const Eigen::Matrix3f& gravity, float yaw_rad,
-                                     const PerceptionConfig& cfg);
+                                     const NormalImageEdgesConfig& cfg, int grid_cell_px_640, float min_length_m);
 
 }  // namespace stairs

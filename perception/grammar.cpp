@@ -6,13 +6,13 @@
 
 namespace stairs {
 
-bool din_riser_ok(double r, const PerceptionConfig& c) {
+bool din_riser_ok(double r, const StairConfig& c) {
   return r >= c.riser_min_m * (1 - c.din_tolerance) && r <= c.riser_max_m * (1 + c.din_tolerance);
 }
-bool din_tread_ok(double t, const PerceptionConfig& c) {
+bool din_tread_ok(double t, const StairConfig& c) {
   return t >= c.tread_min_m * (1 - c.din_tolerance) && t <= c.tread_max_m * (1 + c.din_tolerance);
 }
-bool din_rule_ok(double r, double t, const PerceptionConfig& c) {
+bool din_rule_ok(double r, double t, const StairConfig& c) {
   const double v = 2 * r + t;
   return v >= c.step_rule_min_m * (1 - c.din_tolerance) && v <= c.step_rule_max_m * (1 + c.din_tolerance);
 }
@@ -22,14 +22,14 @@ namespace {
 // Relative distance of a value from the un-widened DIN interval.
 double deviation(double v, double lo, double hi) { return v < lo ? (lo - v) / lo : v > hi ? (v - hi) / hi : 0.0; }
 
-bool laterally_overlapping(const Level& a, const Level& b, const PerceptionConfig& c) {
+bool laterally_overlapping(const Level& a, const Level& b, const StairConfig& c) {
   return std::max(a.t_min, b.t_min) - std::min(a.t_max, b.t_max) <= c.max_lateral_gap_m;
 }
 
 // Deviation of the successor `b` of `a` (nullopt = not a successor). `prev_nosing`
 // is a's nosing when a is itself a step (its tread depth is then known).
 std::optional<double> successor(const Level& a, const Level& b, Direction dir, std::optional<float> a_nosing,
-                                const PerceptionConfig& c) {
+                                const StairConfig& c) {
   // A riser facing the camera stands in front of the level on its top: going
   // down, risers face away, so such a level is in no descending flight (a
   // table's legs seen under its top are).
@@ -44,9 +44,8 @@ std::optional<double> successor(const Level& a, const Level& b, Direction dir, s
   const float spread = c.level_max_spread_of_rise * rise;
   if (lower.reach_above_m > spread || upper.reach_below_m > spread) return std::nullopt;
   double dev = deviation(rise, c.riser_min_m, c.riser_max_m);
-  constexpr float kAdjacent_m = 0.3f;   // a level ends where the next riser starts
   if (dir == Direction::Up) {
-    if (b.s_min <= a.s_min || std::abs(a.s_max - b.s_min) > kAdjacent_m) return std::nullopt;
+    if (b.s_min <= a.s_min || std::abs(a.s_max - b.s_min) > c.max_level_gap_m) return std::nullopt;
     if (a_nosing) {
       const float tread = b.s_min - *a_nosing;
       if (tread < c.landing_min_depth_m) {
@@ -56,7 +55,7 @@ std::optional<double> successor(const Level& a, const Level& b, Direction dir, s
     }
   } else {
     // Going down the lower tread shows beyond the upper nosing (its near part is hidden).
-    if (b.s_max <= a.s_max || b.s_min < a.s_max - kAdjacent_m) return std::nullopt;
+    if (b.s_max <= a.s_max || b.s_min < a.s_max - c.max_level_gap_m) return std::nullopt;
     const float tread = b.s_max - a.s_max;
     if (tread < c.landing_min_depth_m) {
       if (!din_tread_ok(tread, c) || !din_rule_ok(rise, tread, c)) return std::nullopt;
@@ -67,12 +66,12 @@ std::optional<double> successor(const Level& a, const Level& b, Direction dir, s
 }
 
 // The tread that `b` adds after `a` is a landing (its depth is known).
-bool is_landing(const Level& a, const Level& b, Direction dir, std::optional<float> a_nosing, const PerceptionConfig& c) {
+bool is_landing(const Level& a, const Level& b, Direction dir, std::optional<float> a_nosing, const StairConfig& c) {
   if (dir == Direction::Up) return a_nosing && b.s_min - *a_nosing >= c.landing_min_depth_m;
   return b.s_max - a.s_max >= c.landing_min_depth_m;
 }
 
-StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction dir, const PerceptionConfig& c) {
+StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction dir, const StairConfig& c) {
   StairChain chain;
   chain.direction = dir;
   chain.levels.push_back(levels[start]);
@@ -111,7 +110,7 @@ StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction 
 
 }  // namespace
 
-StairChain best_chain(const std::vector<Level>& levels, const PerceptionConfig& c) {
+StairChain best_chain(const std::vector<Level>& levels, const StairConfig& c) {
   StairChain best;
   for (Direction dir : {Direction::Up, Direction::Down})
     for (size_t i = 0; i < levels.size(); ++i) {

@@ -37,12 +37,12 @@ std::optional<Family> best_family(const std::vector<Segment>& segments, float co
 
 }  // namespace
 
-std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const PerceptionConfig& cfg,
+std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const GravityConfig& cfg,
                                            const std::optional<Eigen::Vector3f>& prior) {
   const float deg = static_cast<float>(M_PI) / 180.0f;
   const float cos_tilt = std::cos(cfg.max_tilt_from_image_up_deg * deg);
   const float cos_par = std::cos(cfg.parallel_deg * deg);
-  const float cos_prior = std::cos(cfg.gravity_prior_max_deg * deg);
+  const float cos_prior = std::cos(cfg.prior_max_deg * deg);
   const Eigen::Vector3f image_up(0, -1, 0);
   // Treads and risers both qualify on a stair; the previous frame's up tells
   // them apart when the risers dominate (a robot looking up a flight).
@@ -53,13 +53,13 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   // Vertical planes (risers, walls) fix up too, perpendicular to their
   // normals: used when the treads near the prior are missing or too small to
   // trust beside them (a robot looking up a flight sees thin treads, if any).
-  const float sin_prior = std::sin(cfg.gravity_prior_max_deg * deg);
+  const float sin_prior = std::sin(cfg.prior_max_deg * deg);
   auto vertical = [&](const Eigen::Vector3f& n) { return std::abs(n.dot(*prior)) < sin_prior; };
   const auto v1 = best_family(segments, cos_par, vertical);
-  if (horizontal && (!v1 || horizontal->support >= cfg.gravity_min_support_fraction * v1->support))
+  if (horizontal && (!v1 || horizontal->support >= cfg.min_support_fraction * v1->support))
     return horizontal->normal;
   if (!v1) return std::nullopt;
-  const float cos_distinct = std::cos(30.0f * deg);
+  const float cos_distinct = std::cos(cfg.second_family_min_angle_deg * deg);
   const auto v2 = best_family(segments, cos_par, [&](const Eigen::Vector3f& n) {
     return vertical(n) && std::abs(n.dot(v1->normal)) < cos_distinct;
   });

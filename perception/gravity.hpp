@@ -14,7 +14,7 @@ namespace stairs {
 // gives the support-weighted mean normal. With a prior (the previous frame's
 // up), only candidates within gravity_prior_max_deg of it count; without one
 // there, up is perpendicular to the vertical planes (risers, walls).
-std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const PerceptionConfig& cfg,
+std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const GravityConfig& cfg,
                                            const std::optional<Eigen::Vector3f>& prior = std::nullopt);
 
 // Pose from the up vector: pitch, roll (DESIGN.md conventions) and

@@ -7,7 +7,7 @@
 
 namespace stairs {
 
-int grid_cell_px(const PerceptionConfig& cfg, int image_width) {
+int grid_cell_px(const NormalsConfig& cfg, int image_width) {
   return std::max(1, static_cast<int>(std::lround(cfg.grid_cell_px * image_width / 640.0)));
 }
 
@@ -21,7 +21,7 @@ namespace {
 // that surface up to cell_valid_fraction_range_m, less beyond (as 1/z): at range
 // the sensor drops many pixels, while near a sparse cell is an edge's flying
 // pixels (on a real Kinect v2 looking steeply down they break up the first riser).
-void cell_means(const DepthImage& frame, const PerceptionConfig& cfg, NormalGrid& g) {
+void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g) {
   const Intrinsics& K = frame.K;
   const uint16_t lo = static_cast<uint16_t>(std::clamp(cfg.min_depth_m / frame.depth_scale, 1.0, 65535.0));
   const uint16_t hi = static_cast<uint16_t>(std::clamp(cfg.max_depth_m / frame.depth_scale, 1.0, 65535.0));
@@ -64,8 +64,9 @@ void cell_means(const DepthImage& frame, const PerceptionConfig& cfg, NormalGrid
 
 }  // namespace
 
-void compute_normals(const DepthImage& frame, const PerceptionConfig& cfg, NormalGrid& g) {
+void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g) {
   g.cell_px = grid_cell_px(cfg, frame.K.width);
+  g.margin_cells = cfg.radius_cells;
   g.width = frame.K.width / g.cell_px;
   g.height = frame.K.height / g.cell_px;
   const size_t n = static_cast<size_t>(g.width) * g.height;
@@ -76,7 +77,7 @@ void compute_normals(const DepthImage& frame, const PerceptionConfig& cfg, Norma
   if (n == 0) return;
   cell_means(frame, cfg, g);
 
-  const int r = cfg.normal_radius_cells;
+  const int r = cfg.radius_cells;
   auto near = [&](int a, int b) {
     if (!g.has_point[a] || !g.has_point[b]) return false;
     const float za = g.points[a].z(), zb = g.points[b].z();
@@ -112,7 +113,7 @@ void compute_normals(const DepthImage& frame, const PerceptionConfig& cfg, Norma
       g.has_normal[c] = 1;
     }
   }
-  if (!cfg.smooth_normals) return;
+  if (!cfg.smooth) return;
   // 3x3 mean over neighbours on the same surface: noise down, edges kept.
   std::vector<Eigen::Vector3f> smoothed(raw);
   for (int gy = 1; gy < g.height - 1; ++gy) {

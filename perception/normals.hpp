@@ -15,6 +15,7 @@ namespace stairs {
 struct NormalGrid {
   int width = 0, height = 0;  // cells
   int cell_px = 1;            // pixels per cell side
+  int margin_cells = 0;       // cells at each border without normals (the normal radius)
   std::vector<Eigen::Vector3f> points;   // m, optical frame
   std::vector<Eigen::Vector3f> normals;  // unit, pointing towards the camera
   std::vector<uint8_t> has_point, has_normal;
@@ -22,9 +23,9 @@ struct NormalGrid {
 };
 
 // Cell side in pixels for a frame of the given width (grid_cell_px is for 640).
-int grid_cell_px(const PerceptionConfig& cfg, int image_width);
+int grid_cell_px(const NormalsConfig& cfg, int image_width);
 
 // Fills `grid` (its buffers are reused across frames).
-void compute_normals(const DepthImage& frame, const PerceptionConfig& cfg, NormalGrid& grid);
+void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& grid);
 
 }  // namespace stairs

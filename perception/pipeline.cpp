@@ -58,13 +58,13 @@ Observation Pipeline::process(const DepthImage& frame) {
     clock.finish();
     return obs;
   }
-  compute_normals(frame, cfg_, grid_);
+  compute_normals(frame, cfg_.normals, grid_);
   clock.mark("normals");
-  std::vector<Segment> segments = grow_regions(grid_, cfg_, frame.K.width, frame.K.height, labels_);
+  std::vector<Segment> segments = grow_regions(grid_, cfg_.region_growing, frame.K.width, frame.K.height, labels_);
   clock.mark("region_growing");
   const int64_t gap_us = frame.utime - prior_utime_;
-  if (gap_us < 0 || gap_us > cfg_.gravity_prior_max_gap_s * 1e6) up_prior_.reset();
-  const std::optional<Eigen::Vector3f> planes_up = estimate_up(segments, cfg_, up_prior_);
+  if (gap_us < 0 || gap_us > cfg_.gravity.prior_max_gap_s * 1e6) up_prior_.reset();
+  const std::optional<Eigen::Vector3f> planes_up = estimate_up(segments, cfg_.gravity, up_prior_);
   if (planes_up) {
     up_prior_ = planes_up;
     prior_utime_ = frame.utime;
@@ -79,29 +79,31 @@ Observation Pipeline::process(const DepthImage& frame) {
   }
   obs.camera = pose_from_up(*up);
   const Eigen::Matrix3f R = obs.camera.gravity_rotation.toRotationMatrix().cast<float>();
-  PlaneSet ps = plane_geometry(grid_, segments, R, cfg_);
+  PlaneSet ps = plane_geometry(grid_, segments, R, cfg_.plane_geometry, cfg_.output);
   clock.mark("plane_geometry");
-  const std::vector<JumpEdge> jump_edges = depth_jump_edges(grid_, R, ps.yaw_rad, cfg_);
+  const std::vector<JumpEdge> jump_edges = depth_jump_edges(grid_, R, ps.yaw_rad, cfg_.edges_depth_jumps, cfg_.stair.min_step_width_m);
   clock.mark("edges_depth_jumps");
-  const std::vector<Edge> normal_edges = normal_image_edges(grid_, R, ps.yaw_rad, cfg_);
+  const std::vector<Edge> normal_edges = normal_image_edges(grid_, R, ps.yaw_rad, cfg_.edges_normal_image, cfg_.normals.grid_cell_px,
+                                                          cfg_.stair.min_step_width_m);
   clock.mark("edges_normal_image");
-  const std::vector<Level> levels = tread_levels(ps, jump_edges, cfg_);
+  const std::vector<Level> levels = tread_levels(ps, jump_edges, cfg_.stair);
   clock.mark("steps");
-  const StairChain chain = best_chain(levels, cfg_);
-  std::vector<Step> steps = steps_from_chain(ps, chain);
+  const StairChain chain = best_chain(levels, cfg_.stair);
+  std::vector<Step> steps = steps_from_chain(ps, chain, cfg_.stair);
   clock.mark("grammar");
-  reconstruct(ps, chain, steps, cfg_);
+  reconstruct(ps, chain, steps, cfg_.stair);
   clock.mark("reconstruction");
   std::string refuted;
-  if (static_cast<int>(steps.size()) >= cfg_.min_steps) {
+  if (static_cast<int>(steps.size()) >= cfg_.stair.min_steps) {
     const Verdict verdict = verify(grid_, frame.K, R, ps, chain.direction, steps, cfg_.verification,
-                                   cfg_.riser_max_m * (1 + cfg_.din_tolerance));
+                                   cfg_.stair.riser_max_m * (1 + cfg_.stair.din_tolerance));
     steps.resize(verdict.kept);
     refuted = verdict.reason;
   }
   clock.mark("verification");
-  if (static_cast<int>(steps.size()) < cfg_.min_steps) steps.clear();
-  obs.camera.height_m = camera_height(ps, steps, chain.direction, frame.K, obs.camera.pitch_deg, cfg_);
+  if (static_cast<int>(steps.size()) < cfg_.stair.min_steps) steps.clear();
+  obs.camera.height_m = camera_height(ps, steps, chain.direction, frame.K, obs.camera.pitch_deg, cfg_.camera_height,
+                                    cfg_.stair, cfg_.verification.run_tolerance_m);
   if (!steps.empty()) {
     obs.direction = chain.direction;
     obs.steps = std::move(steps);
@@ -115,7 +117,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   obs.planes = std::move(ps.planes);
   for (const JumpEdge& j : jump_edges) obs.edges.push_back(j.edge);
   obs.edges.insert(obs.edges.end(), normal_edges.begin(), normal_edges.end());
-  if (obs.edges.size() > static_cast<size_t>(cfg_.max_edges)) obs.edges.resize(cfg_.max_edges);
+  if (obs.edges.size() > static_cast<size_t>(cfg_.output.max_edges)) obs.edges.resize(cfg_.output.max_edges);
   clock.finish();
   return obs;
 }

@@ -33,6 +33,8 @@ std::vector<int> grid_subsample(const NormalGrid& g, const std::vector<int>& cel
 
 namespace {
 
+constexpr float kDeg = static_cast<float>(M_PI) / 180.0f;
+
 struct Group {
   std::vector<int> segs;
   Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // gravity frame, support-weighted
@@ -77,16 +79,18 @@ std::vector<Group> histogram_merge(std::vector<Group> items, float bin) {
   return out;
 }
 
-}  // namespace
-
-PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segments, const Eigen::Matrix3f& R,
-                        const PerceptionConfig& cfg) {
-  const float deg = static_cast<float>(M_PI) / 180.0f;
-  const float cos_h = std::cos(cfg.horizontal_tol_deg * deg), sin_v = std::sin(cfg.vertical_tol_deg * deg);
-  PlaneSet out;
-  // Stair axis from the risers facing the camera (support-weighted).
-  Eigen::Vector2f axis = Eigen::Vector2f::Zero();
+// Classification: treads (normal near up), vertical planes, others; the stair
+// axis from the vertical ones facing the camera, support-weighted (thesis 3.5).
+struct Classified {
   std::vector<Group> horizontal, vertical, other;
+  float yaw_rad = 0.0f;
+};
+
+Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f& R, const PlaneGeometryConfig& cfg) {
+  const float cos_h = std::cos(cfg.horizontal_tol_deg * kDeg), sin_v = std::sin(cfg.vertical_tol_deg * kDeg);
+  const float cos_facing = std::cos(cfg.axis_riser_max_deg * kDeg);
+  Classified out;
+  Eigen::Vector2f axis = Eigen::Vector2f::Zero();
   for (size_t i = 0; i < segments.size(); ++i) {
     const Segment& s = segments[i];
     Group grp;
@@ -96,95 +100,115 @@ PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segment
     const Eigen::Vector3f n = R * s.normal, c = R * s.centroid;
     if (n.z() > cos_h) {
       grp.key = c.z();
-      horizontal.push_back(std::move(grp));
+      out.horizontal.push_back(std::move(grp));
     } else if (std::abs(n.z()) < sin_v) {
-      if (n.x() < -0.5f) axis += -n.head<2>().normalized() * static_cast<float>(grp.support);
-      vertical.push_back(std::move(grp));
+      if (n.x() < -cos_facing) axis += -n.head<2>().normalized() * static_cast<float>(grp.support);
+      out.vertical.push_back(std::move(grp));
     } else {
-      other.push_back(std::move(grp));
+      out.other.push_back(std::move(grp));
     }
   }
   out.yaw_rad = axis.squaredNorm() > 0 ? std::atan2(axis.y(), axis.x()) : 0.0f;
-  const float cy = std::cos(out.yaw_rad), sy = std::sin(out.yaw_rad);
+  return out;
+}
 
-  horizontal = histogram_merge(std::move(horizontal), cfg.merge_bin_m);
-  for (Group& grp : horizontal) grp.kind = PlaneKind::Tread;
-  // Vertical planes: merged per normal direction (parallel within parallel_deg) by depth.
-  std::vector<Group> merged_vertical;
-  {
-    const float cos_par = std::cos(cfg.parallel_deg * deg);
-    std::vector<uint8_t> used(vertical.size(), 0);
-    for (size_t i = 0; i < vertical.size(); ++i) {
-      if (used[i]) continue;
-      const Eigen::Vector3f ni = vertical[i].normal.normalized();
-      std::vector<Group> family;
-      for (size_t j = i; j < vertical.size(); ++j) {
-        if (used[j] || vertical[j].normal.normalized().dot(ni) < cos_par) continue;
-        used[j] = 1;
-        Group v = vertical[j];
-        const Segment& s = segments[v.segs[0]];
-        v.key = -ni.dot(R * s.centroid);  // distance of the plane from the camera along its normal
-        family.push_back(std::move(v));
-      }
-      for (Group& m : histogram_merge(std::move(family), cfg.merge_bin_m)) {
-        const Eigen::Vector3f n = m.normal.normalized();
-        m.kind = (n.x() * cy + n.y() * sy) < -std::cos(cfg.vertical_tol_deg * deg) ? PlaneKind::Riser
-                                                                                     : PlaneKind::Other;
-        merged_vertical.push_back(std::move(m));
-      }
+// Merging: treads by height; vertical planes per normal direction (parallel
+// within cfg.parallel_deg) by depth along it, the ones facing the camera along
+// the axis become risers. Treads and risers first, then by support; capped.
+std::vector<Group> merge(Classified c, const std::vector<Segment>& segments, const Eigen::Matrix3f& R,
+                         const PlaneGeometryConfig& cfg, int max_planes) {
+  std::vector<Group> all = histogram_merge(std::move(c.horizontal), cfg.merge_bin_m);
+  for (Group& grp : all) grp.kind = PlaneKind::Tread;
+  const float cos_par = std::cos(cfg.parallel_deg * kDeg), cos_riser = std::cos(cfg.vertical_tol_deg * kDeg);
+  const float cy = std::cos(c.yaw_rad), sy = std::sin(c.yaw_rad);
+  std::vector<uint8_t> used(c.vertical.size(), 0);
+  for (size_t i = 0; i < c.vertical.size(); ++i) {
+    if (used[i]) continue;
+    const Eigen::Vector3f ni = c.vertical[i].normal.normalized();
+    std::vector<Group> family;
+    for (size_t j = i; j < c.vertical.size(); ++j) {
+      if (used[j] || c.vertical[j].normal.normalized().dot(ni) < cos_par) continue;
+      used[j] = 1;
+      Group v = c.vertical[j];
+      v.key = -ni.dot(R * segments[v.segs[0]].centroid);  // distance of the plane from the camera along its normal
+      family.push_back(std::move(v));
+    }
+    for (Group& m : histogram_merge(std::move(family), cfg.merge_bin_m)) {
+      const Eigen::Vector3f n = m.normal.normalized();
+      m.kind = (n.x() * cy + n.y() * sy) < -cos_riser ? PlaneKind::Riser : PlaneKind::Other;
+      all.push_back(std::move(m));
     }
   }
-  std::vector<Group> all;
-  for (auto* v : {&horizontal, &merged_vertical, &other})
-    for (Group& grp : *v) all.push_back(std::move(grp));
-  // Treads and risers first, then by support; capped.
+  for (Group& grp : c.other) all.push_back(std::move(grp));
   std::stable_sort(all.begin(), all.end(), [](const Group& a, const Group& b) {
     const bool sa = a.kind != PlaneKind::Other, sb = b.kind != PlaneKind::Other;
     return sa != sb ? sa : a.support > b.support;
   });
-  if (static_cast<int>(all.size()) > cfg.max_planes) all.resize(cfg.max_planes);
+  if (static_cast<int>(all.size()) > max_planes) all.resize(max_planes);
+  return all;
+}
 
+// Scratch buffers of extents(), reused across planes.
+struct ExtentScratch {
   std::vector<float> ss, ts, zs, zs_all;
+};
+
+// Extents along the axis (s), across it (t) and up (z), trimmed percentiles;
+// whether the plane's top / bottom rows are inside the grid's valid margin.
+PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Eigen::Matrix3f& R, float yaw_rad,
+                    const PlaneGeometryConfig& cfg, Eigen::Vector3f& centroid, ExtentScratch& x) {
+  const float cy = std::cos(yaw_rad), sy = std::sin(yaw_rad);
+  x.ss.clear();
+  x.ts.clear();
+  x.zs.clear();
+  centroid = Eigen::Vector3f::Zero();
+  for (int c : cells) {
+    const Eigen::Vector3f q = R * g.points[c];
+    centroid += q;
+    x.ss.push_back(cy * q.x() + sy * q.y());
+    x.ts.push_back(-sy * q.x() + cy * q.y());
+    x.zs.push_back(q.z());
+  }
+  centroid /= static_cast<float>(cells.size());
+  x.zs_all = x.zs;
+  PlaneExtent e;
+  const float lo = cfg.extent_percentile, hi = 1.0f - cfg.extent_percentile;
+  e.s_min = percentile(x.ss, lo);
+  e.s_max = percentile(x.ss, hi);
+  e.t_min = percentile(x.ts, lo);
+  e.t_max = percentile(x.ts, hi);
+  e.z_min = percentile(x.zs, lo);
+  e.z_max = percentile(x.zs, hi);
+  // Normals exist from margin_cells inside the grid: a plane whose top
+  // reaches the upper margin may continue above the view.
+  const int margin = g.margin_cells + 1;
+  for (size_t k = 0; k < cells.size() && e.top_in_view; ++k)
+    e.top_in_view = x.zs_all[k] < e.z_max - cfg.view_edge_band_m || cells[k] / g.width > margin;
+  for (size_t k = 0; k < cells.size() && e.bottom_in_view; ++k)
+    e.bottom_in_view = x.zs_all[k] > e.z_min + cfg.view_edge_band_m || cells[k] / g.width < g.height - 1 - margin;
+  e.s_mean = cy * centroid.x() + sy * centroid.y();
+  e.z_mean = centroid.z();
+  return e;
+}
+
+}  // namespace
+
+PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segments, const Eigen::Matrix3f& R,
+                        const PlaneGeometryConfig& cfg, const OutputConfig& caps) {
+  Classified classified = classify(segments, R, cfg);
+  PlaneSet out;
+  out.yaw_rad = classified.yaw_rad;
+  ExtentScratch scratch;
   std::vector<int> cells;
-  for (const Group& grp : all) {
+  for (const Group& grp : merge(std::move(classified), segments, R, cfg, caps.max_planes)) {
     cells.clear();
     for (int si : grp.segs) cells.insert(cells.end(), segments[si].cells.begin(), segments[si].cells.end());
     Plane p;
     p.kind = grp.kind;
     p.normal = grp.normal.normalized();
     p.support = static_cast<int>(cells.size()) * g.cell_px * g.cell_px;
-    ss.clear();
-    ts.clear();
-    zs.clear();
-    Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
-    for (int c : cells) {
-      const Eigen::Vector3f q = R * g.points[c];
-      centroid += q;
-      ss.push_back(cy * q.x() + sy * q.y());
-      ts.push_back(-sy * q.x() + cy * q.y());
-      zs.push_back(q.z());
-    }
-    p.centroid = centroid / static_cast<float>(cells.size());
-    zs_all = zs;
-    PlaneExtent e;
-    const float lo = cfg.extent_percentile, hi = 1.0f - cfg.extent_percentile;
-    e.s_min = percentile(ss, lo);
-    e.s_max = percentile(ss, hi);
-    e.t_min = percentile(ts, lo);
-    e.t_max = percentile(ts, hi);
-    e.z_min = percentile(zs, lo);
-    e.z_max = percentile(zs, hi);
-    // Normals exist from normal_radius_cells inside the grid: a plane whose
-    // top reaches the upper margin may continue above the view.
-    const int margin = cfg.normal_radius_cells + 1;
-    for (size_t k = 0; k < cells.size() && e.top_in_view; ++k)
-      e.top_in_view = zs_all[k] < e.z_max - 0.02f || cells[k] / g.width > margin;
-    for (size_t k = 0; k < cells.size() && e.bottom_in_view; ++k)
-      e.bottom_in_view = zs_all[k] > e.z_min + 0.02f || cells[k] / g.width < g.height - 1 - margin;
-    e.s_mean = cy * p.centroid.x() + sy * p.centroid.y();
-    e.z_mean = p.centroid.z();
-    const bool tread = p.kind == PlaneKind::Tread;
-    if (tread) {
+    const PlaneExtent e = extents(g, cells, R, out.yaw_rad, cfg, p.centroid, scratch);
+    if (p.kind == PlaneKind::Tread) {
       p.corners[Plane::kTopLeft] = out.to_camera(e.s_max, e.t_max, e.z_mean);
       p.corners[Plane::kTopRight] = out.to_camera(e.s_max, e.t_min, e.z_mean);
       p.corners[Plane::kBottomLeft] = out.to_camera(e.s_min, e.t_max, e.z_mean);
@@ -198,7 +222,7 @@ PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segment
       p.extent_m = e.z_max - e.z_min;
     }
     p.length_m = e.t_max - e.t_min;
-    const int cap = p.kind == PlaneKind::Other ? cfg.max_other_points : cfg.max_sample_points;
+    const int cap = p.kind == PlaneKind::Other ? caps.max_other_points : caps.max_sample_points;
     for (int c : grid_subsample(g, cells, cap)) p.points.push_back(R * g.points[c]);
     out.planes.push_back(std::move(p));
     out.extents.push_back(e);

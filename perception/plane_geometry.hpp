@@ -31,9 +31,10 @@ struct PlaneSet {
 
 // Merges the segments (optical frame) rotated by `gravity` (optical ->
 // gravity-aligned) into planes: horizontal ones binned by height, vertical
-// ones by depth along their normal, one cross-bin merge per plane.
+// ones by depth along their normal, one cross-bin merge per plane; at most
+// caps.max_planes, with point samples of at most caps.max_*_points.
 PlaneSet plane_geometry(const NormalGrid& grid, const std::vector<Segment>& segments,
-                        const Eigen::Matrix3f& gravity, const PerceptionConfig& cfg);
+                        const Eigen::Matrix3f& gravity, const PlaneGeometryConfig& cfg, const OutputConfig& caps);
 
 // At most max_points of `cells`, spatially even on the image grid.
 std::vector<int> grid_subsample(const NormalGrid& grid, const std::vector<int>& cells, int max_points);

@@ -9,17 +9,15 @@ namespace stairs {
 
 namespace {
 
-constexpr float kTol_m = 0.06f;
-
 // A segmented riser whose face lies between axial positions s_lo and s_hi and
-// which spans upwards (above = true) or downwards from height z by more than
-// min_span_m.
-int riser_at(const PlaneSet& ps, float s_lo, float s_hi, float z, bool above, float min_span_m) {
+// which spans upwards (above = true) or downwards from height z (within
+// contact_m) by more than min_span_m.
+int riser_at(const PlaneSet& ps, float s_lo, float s_hi, float z, bool above, float min_span_m, float contact_m) {
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
     if (ps.planes[i].kind != PlaneKind::Riser || e.s_mean < s_lo || e.s_mean > s_hi) continue;
-    if (above ? std::abs(e.z_min - z) < kTol_m && e.z_max > z + min_span_m
-              : std::abs(e.z_max - z) < kTol_m && e.z_min < z - min_span_m)
+    if (above ? std::abs(e.z_min - z) < contact_m && e.z_max > z + min_span_m
+              : std::abs(e.z_max - z) < contact_m && e.z_min < z - min_span_m)
       return static_cast<int>(i);
   }
   return -1;
@@ -27,11 +25,11 @@ int riser_at(const PlaneSet& ps, float s_lo, float s_hi, float z, bool above, fl
 
 // The horizontal plane at a riser's foot: level with its bottom, reaching it
 // (or passing beside it: a floor wider than the flight).
-int level_at_foot(const PlaneSet& ps, const PlaneExtent& riser) {
+int level_at_foot(const PlaneSet& ps, const PlaneExtent& riser, float contact_m) {
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
-    if (ps.planes[i].kind == PlaneKind::Tread && std::abs(e.z_mean - riser.z_min) < kTol_m &&
-        e.z_mean < riser.z_max - kTol_m && e.s_min < riser.s_mean && e.s_max > riser.s_mean - 2 * kTol_m)
+    if (ps.planes[i].kind == PlaneKind::Tread && std::abs(e.z_mean - riser.z_min) < contact_m &&
+        e.z_mean < riser.z_max - contact_m && e.s_min < riser.s_mean && e.s_max > riser.s_mean - 2 * contact_m)
       return static_cast<int>(i);
   }
   return -1;
@@ -49,11 +47,13 @@ double median_rise(const std::vector<Step>& steps) {
 // median), and a riser standing on the last level is the next step, its tread
 // out of view ("treads between risers").
 void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps,
-                        const PerceptionConfig& cfg) {
+                        const StairConfig& cfg) {
   if (steps.empty()) return;
   const double median = median_rise(steps);
   const Level& base = chain.levels.front();
-  if (const int r = riser_at(ps, base.s_min - 2 * kTol_m, base.s_min + 2 * kTol_m, base.z, false, kTol_m); r >= 0) {
+  const float contact = cfg.riser_contact_m;
+  if (const int r = riser_at(ps, base.s_min - 2 * contact, base.s_min + 2 * contact, base.z, false, contact, contact);
+      r >= 0) {
     Step s;
     s.riser_plane = r;
     s.tread_plane = base.plane;
@@ -61,7 +61,7 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
     // grammar: the floor under a short first riser), else from the riser itself
     // where its foot is in view; otherwise the median is a prior, flagged.
     const PlaneExtent& e = ps.extents[r];
-    const int floor = level_at_foot(ps, e);
+    const int floor = level_at_foot(ps, e, contact);
     s.riser_height_m = floor >= 0 ? base.z - ps.extents[floor].z_mean : e.bottom_in_view ? e.z_max - e.z_min : median;
     if (floor < 0 && !e.bottom_in_view) s.inferred |= kStepRiserInferred;
     s.nosing_m = ps.to_camera(base.s_min, 0.5f * (base.t_min + base.t_max), base.z).cast<double>();
@@ -72,12 +72,13 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
   // The next riser stands at the top level's far end; when that level is a
   // riser's top (a tread seen edge-on from a low camera) its far end is
   // unseen: the riser stands a plausible tread beyond.
-  const float s_lo = top.plane >= 0 ? top.s_max - 2 * kTol_m
+  const float s_lo = top.plane >= 0 ? top.s_max - 2 * cfg.riser_contact_m
                                     : top.s_max + static_cast<float>(cfg.tread_min_m * (1 - cfg.din_tolerance));
-  const float s_hi = top.plane >= 0 ? top.s_max + 2 * kTol_m
+  const float s_hi = top.plane >= 0 ? top.s_max + 2 * cfg.riser_contact_m
                                     : top.s_max + static_cast<float>(cfg.tread_max_m * (1 + cfg.din_tolerance));
   // Its top is cut off by the view: a sliver of it is as good as more.
-  if (const int r = riser_at(ps, s_lo, s_hi, top.z, true, static_cast<float>(cfg.min_riser_seen_fraction * median));
+  if (const int r = riser_at(ps, s_lo, s_hi, top.z, true, static_cast<float>(cfg.min_riser_seen_fraction * median),
+                             cfg.riser_contact_m);
       r >= 0) {
     const PlaneExtent& e = ps.extents[r];
     const double seen = e.z_max - top.z;
@@ -100,7 +101,7 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
 // flight below its edge (a floor ends at a wall, not at a drop); the riser
 // below it is out of view (the rise is the chain's median).
 void complete_descending(const PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps,
-                         const PerceptionConfig& cfg) {
+                         const StairConfig& cfg) {
   const Level& last = chain.levels.back();
   if (static_cast<int>(steps.size()) < cfg.min_steps || !last.far_edge) return;
   Step s;
@@ -114,7 +115,7 @@ void complete_descending(const PlaneSet& ps, const StairChain& chain, std::vecto
 
 }  // namespace
 
-void reconstruct(PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps, const PerceptionConfig& cfg) {
+void reconstruct(PlaneSet& ps, const StairChain& chain, std::vector<Step>& steps, const StairConfig& cfg) {
   const bool up = chain.direction == Direction::Up;
   if (up) complete_ascending(ps, chain, steps, cfg);
   else if (chain.direction == Direction::Down) complete_descending(ps, chain, steps, cfg);

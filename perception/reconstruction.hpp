@@ -8,6 +8,6 @@
 
 namespace stairs {
 
-void reconstruct(PlaneSet& planes, const StairChain& chain, std::vector<Step>& steps, const PerceptionConfig& cfg);
+void reconstruct(PlaneSet& planes, const StairChain& chain, std::vector<Step>& steps, const StairConfig& cfg);
 
 }  // namespace stairs

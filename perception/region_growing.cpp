@@ -26,14 +26,14 @@ void fit_segment(const NormalGrid& g, Segment& s) {
   s.rms_m = static_cast<float>(std::sqrt(std::max(0.0, es.eigenvalues()(0))));
 }
 
-std::vector<Segment> grow_regions(const NormalGrid& g, const PerceptionConfig& cfg, int image_width,
+std::vector<Segment> grow_regions(const NormalGrid& g, const RegionGrowingConfig& cfg, int image_width,
                                   int image_height, std::vector<int>& labels) {
   const int n = g.width * g.height;
   labels.assign(n, -1);
   std::vector<Segment> segments;
   if (n == 0) return segments;
-  const float cos_max = std::cos(cfg.grow_angle_deg * static_cast<float>(M_PI) / 180.0f);
-  const float cos_region = std::cos(cfg.grow_region_angle_deg * static_cast<float>(M_PI) / 180.0f);
+  const float cos_max = std::cos(cfg.angle_deg * static_cast<float>(M_PI) / 180.0f);
+  const float cos_region = std::cos(cfg.region_angle_deg * static_cast<float>(M_PI) / 180.0f);
   const double min_px = cfg.min_plane_px_320 * (static_cast<double>(image_width) * image_height) / (320.0 * 240.0);
   const size_t min_cells = static_cast<size_t>(std::max(3.0, min_px / (g.cell_px * g.cell_px)));
   std::vector<int> stack;
@@ -58,7 +58,7 @@ std::vector<Segment> grow_regions(const NormalGrid& g, const PerceptionConfig& c
       const int gx = c % g.width, gy = c / g.width;
       const Eigen::Vector3f& nc = g.normals[c];
       const Eigen::Vector3f& pc = g.points[c];
-      const float tol = std::min(cfg.grow_distance_m * pc.z() * pc.z(), cfg.grow_max_distance_m) + 0.004f;
+      const float tol = std::min(cfg.distance_m * pc.z() * pc.z(), cfg.max_distance_m) + cfg.distance_floor_m;
       const int nb[4] = {gx > 0 ? c - 1 : -1, gx + 1 < g.width ? c + 1 : -1, gy > 0 ? c - g.width : -1,
                          gy + 1 < g.height ? c + g.width : -1};
       for (int k : nb) {

@@ -21,7 +21,7 @@ void fit_segment(const NormalGrid& grid, Segment& s);
 // normal is close to the normal of the cell it is reached from and it lies on
 // that cell's tangent plane. Drops segments smaller than the scaled minimum.
 // `labels` (reused) gets the segment index per cell or -1.
-std::vector<Segment> grow_regions(const NormalGrid& grid, const PerceptionConfig& cfg, int image_width,
+std::vector<Segment> grow_regions(const NormalGrid& grid, const RegionGrowingConfig& cfg, int image_width,
                                   int image_height, std::vector<int>& labels);
 
 }  // namespace stairs

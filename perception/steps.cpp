@@ -5,7 +5,7 @@
 
 namespace stairs {
 
-std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>& edges, const PerceptionConfig& cfg) {
+std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>& edges, const StairConfig& cfg) {
   std::vector<Level> levels;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
@@ -16,7 +16,7 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   // segment, but the riser below each one is in view: its top edge is the
   // tread's front ("treads between risers", thesis 4.5).
   const size_t n_treads = levels.size();
-  constexpr float kSameLevel_m = 0.04f, kBehind_m = 0.1f, kAhead_m = 0.4f;
+  const float same_level = cfg.same_level_m, behind = cfg.riser_own_behind_m, ahead = cfg.riser_own_ahead_m;
   // A tread less than the lowest plausible rise above a riser's top is that
   // riser's own: a nosing overhang hides the riser's top under its slab.
   const float min_rise_m = cfg.riser_min_m * (1 - cfg.din_tolerance);
@@ -25,8 +25,8 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
     if (ps.planes[i].kind != PlaneKind::Riser || !e.top_in_view || e.t_max - e.t_min < cfg.min_step_width_m) continue;
     bool seen = false;
     for (size_t k = 0; k < n_treads && !seen; ++k)
-      seen = levels[k].z > e.z_max - kSameLevel_m && levels[k].z < e.z_max + min_rise_m &&
-             levels[k].s_max > e.s_mean - kBehind_m && levels[k].s_min < e.s_mean + kAhead_m;
+      seen = levels[k].z > e.z_max - same_level && levels[k].z < e.z_max + min_rise_m &&
+             levels[k].s_max > e.s_mean - behind && levels[k].s_min < e.s_mean + ahead;
     if (!seen) levels.push_back({-1, e.z_max, e.s_mean, e.s_mean, e.t_min, e.t_max, false, true});
   }
   // Likewise far treads seen from above are strips too thin for planes, but
@@ -34,8 +34,8 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   for (const JumpEdge& j : edges) {
     bool seen = false;
     for (size_t k = 0; k < n_treads && !seen; ++k) {
-      seen = std::abs(levels[k].z - j.z) < kSameLevel_m && levels[k].s_max > j.s - kAhead_m &&
-             levels[k].s_min < j.s + kBehind_m;
+      seen = std::abs(levels[k].z - j.z) < same_level && levels[k].s_max > j.s - ahead &&
+             levels[k].s_min < j.s + behind;
       levels[k].far_edge = levels[k].far_edge || seen;
     }
     if (!seen) levels.push_back({-1, j.z, j.s, j.s, j.t_min, j.t_max, true});
@@ -53,9 +53,9 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
 namespace {
 
 // The segmented riser whose face lies at the nosing line, spanning the rise.
-int find_riser(const PlaneSet& ps, float s, float z_low, float z_high) {
+int find_riser(const PlaneSet& ps, float s, float z_low, float z_high, float max_distance_m) {
   int best = -1;
-  float best_d = 0.1f;
+  float best_d = max_distance_m;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     if (ps.planes[i].kind != PlaneKind::Riser) continue;
     const PlaneExtent& e = ps.extents[i];
@@ -71,7 +71,7 @@ int find_riser(const PlaneSet& ps, float s, float z_low, float z_high) {
 
 }  // namespace
 
-std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain) {
+std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, const StairConfig& cfg) {
   std::vector<Step> steps;
   const auto& L = chain.levels;
   const bool up = chain.direction == Direction::Up;
@@ -85,7 +85,7 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain) 
     s.tread_plane = tread.plane;
     s.riser_height_m = tread.z - below.z;
     float nosing_s = up ? tread.s_min : tread.s_max;
-    s.riser_plane = find_riser(ps, nosing_s, below.z, tread.z);
+    s.riser_plane = find_riser(ps, nosing_s, below.z, tread.z, cfg.riser_at_nosing_m);
     // The riser's face is the better estimate: the tread's edge cells are lost at the corner.
     if (s.riser_plane >= 0) nosing_s = ps.extents[s.riser_plane].s_mean;
     s.nosing_m = ps.to_camera(nosing_s, 0.5f * (tread.t_min + tread.t_max), tread.z).cast<double>();

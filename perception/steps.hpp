@@ -23,7 +23,7 @@ struct Level {
 // edges whose tread is not segmented, lowest first; planes narrower than
 // min_step_width_m are not steps.
 std::vector<Level> tread_levels(const PlaneSet& planes, const std::vector<JumpEdge>& edges,
-                                const PerceptionConfig& cfg);
+                                const StairConfig& cfg);
 
 // A staircase hypothesis: a chain of levels in walking order (`Up`: floor
 // first then each higher tread; `Down`: the level the camera looks from first).
@@ -37,6 +37,6 @@ struct StairChain {
 
 // Steps of a chain, nearest first, with visible tread extents (reconstruction
 // corrects them) and the matching segmented riser plane when there is one.
-std::vector<Step> steps_from_chain(const PlaneSet& planes, const StairChain& chain);
+std::vector<Step> steps_from_chain(const PlaneSet& planes, const StairChain& chain, const StairConfig& cfg);
 
 }  // namespace stairs

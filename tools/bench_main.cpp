@@ -1,5 +1,6 @@
 // stairs-bench: our full pipeline against PCL's organized plane extraction on
 // the same frames in the same run; latency as medians, p95 and a ratio.
+#include "common/config_file.hpp"
 #include "common/daemon.hpp"
 #include "tools/downsample.hpp"
 #include "tools/pcl_peer.hpp"
@@ -45,9 +46,18 @@ int main(int argc, char** argv) {
   opts.positional("INPUT", "LCM log or sequence directory", false)
       .add("resolution", "WxH", "downsample the input by an integer factor to WxH (e.g. 320x240)")
       .add("max-frames", "N", "process at most N frames (0 = all)", "0")
-      .add("config", "FILE", "JSON with optional \"perception\" and \"tracker\" objects")
+      .config_options("\"perception\" and \"tracker\"")
       .add("header", "", "print the table header (and nothing else when no INPUT is given)");
   opts.parse(argc, argv);
+  if (opts.flag("print-config")) {
+    try {
+      stairs::print_config(std::cout, stairs::to_json(stairs::load_chain_config(opts.get("config"))));
+      return 0;
+    } catch (const std::exception& e) {
+      std::cerr << "stairs-bench: " << e.what() << "\n";
+      return 1;
+    }
+  }
   if (opts.flag("header")) std::cout << kHeader;
   if (opts.positionals().empty()) {
     if (opts.flag("header")) return 0;
@@ -58,7 +68,7 @@ int main(int argc, char** argv) {
     stairs::eval::ReplayOptions options;
     options.max_frames = opts.get_int("max-frames");
     if (opts.has("resolution")) stairs::eval::parse_resolution(opts.get("resolution"), options.width, options.height);
-    options.config_path = opts.get("config");
+    options.config = stairs::load_chain_config(opts.get("config"));
     const std::string input = opts.positionals().at(0);
 
     stairs::eval::PclPeer peer;

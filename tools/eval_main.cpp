@@ -1,6 +1,7 @@
 // stairs-eval: replays a log or sequence directory through perception and the
 // tracker (or takes what the daemons published, --recorded), scores it against
 // ground truth and writes DESIGN.md's Result JSON.
+#include "common/config_file.hpp"
 #include "common/daemon.hpp"
 #include "common/json_io.hpp"
 #include "tools/downsample.hpp"
@@ -16,9 +17,9 @@ int main(int argc, char** argv) {
                        "as fast as possible, prints the thesis' tables 6.1-6.4 when ground truth is present, the "
                        "final model and per-stage latency. With --recorded it scores a recorded live run instead: the "
                        "observations and models the daemons published, as they ran.");
-  opts.positional("INPUT", "LCM log (STAIRS_DEPTH [+ STAIRS_GROUND_TRUTH]) or sequence directory")
+  opts.positional("INPUT", "LCM log (STAIRS_DEPTH [+ STAIRS_GROUND_TRUTH]) or sequence directory", false)
       .add("json", "FILE", "write DESIGN.md's Result JSON here (atomically)")
-      .add("config", "FILE", "JSON with optional \"perception\" and \"tracker\" objects")
+      .config_options("\"perception\" and \"tracker\"")
       .add("max-frames", "N", "process at most N frames (0 = all)", "0")
       .add("resolution", "WxH", "downsample the input by an integer factor to WxH (e.g. 320x240)")
       .add("recorded", "",
@@ -33,7 +34,15 @@ int main(int argc, char** argv) {
     options.max_frames = opts.get_int("max-frames");
     if (options.max_frames < 0) throw std::invalid_argument("--max-frames must be >= 0");
     if (opts.has("resolution")) stairs::eval::parse_resolution(opts.get("resolution"), options.width, options.height);
-    options.config_path = opts.get("config");
+    options.config = stairs::load_chain_config(opts.get("config"));
+    if (opts.flag("print-config")) {
+      stairs::print_config(std::cout, stairs::to_json(options.config));
+      return 0;
+    }
+    if (opts.positionals().empty()) {
+      std::cerr << "stairs-eval: missing INPUT (see --help)\n";
+      return 2;
+    }
     options.progress = !opts.flag("quiet");
     stairs::eval::RunResult result;
     if (opts.flag("recorded")) {

@@ -2,6 +2,7 @@
 // in-process, frame by frame, as fast as possible (no transport in the loop).
 #pragma once
 
+#include "chain/config.hpp"
 #include "tools/result_json.hpp"
 
 #include <functional>
@@ -13,7 +14,7 @@ struct ReplayOptions {
   int max_frames = 0;         // frames to process, 0 = all
   int width = 0, height = 0;  // downsample to this resolution, 0 = native
   bool progress = false;      // progress bar on stderr
-  std::string config_path;    // optional JSON {"perception": {...}, "tracker": {...}}
+  ChainConfig config;         // perception and tracker parameters (chain/config.hpp)
 };
 
 // Called with every frame as the pipeline will see it, before it runs, outside

@@ -2,6 +2,8 @@
 // tracking), with its unit and default.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 
 namespace stairs {
@@ -63,14 +65,59 @@ struct TrackerConfig {
   double time_jump_back_s = 1.0;  // s; an observation this much older than the last starts a new stream
                                   // (a log replayed, a camera restarted): the model is reset; a smaller
                                   // step back is an out-of-order observation and is dropped
+
+  template <class V>
+  void visit(V& v) {
+    v("min_seed_steps", min_seed_steps, 1, 64);
+    v("icp_max_distance_m", icp_max_distance_m, 0.001, 10.0);
+    v("icp_max_tread_fraction", icp_max_tread_fraction, 0.01, 10.0);
+    v("icp_min_distance_m", icp_min_distance_m, 0.0001, 10.0);
+    v("icp_distance_factor", icp_distance_factor, 0.01, 0.99);
+    v("icp_iterations_per_stage", icp_iterations_per_stage, 1, 100);
+    v("registration_points_per_plane", registration_points_per_plane, 1, 1024);
+    v("nosing_weight_points", nosing_weight_points, 0.0, 10000.0);
+    v("accept_distance_m", accept_distance_m, 0.0001, 1.0);
+    v("min_inlier_ratio", min_inlier_ratio, 0.0, 1.0);
+    v("max_yaw_jump_deg", max_yaw_jump_deg, 0.0, 180.0);
+    v("max_translation_jump_m", max_translation_jump_m, 0.0, 10.0);
+    v("velocity_window_s", velocity_window_s, 0.001, 60.0);
+    v("max_prediction_s", max_prediction_s, 0.0, 60.0);
+    v("predict_camera_s", predict_camera_s, 0.0, 60.0);
+    v("odometry_max_age_s", odometry_max_age_s, 0.0, 10.0);
+    v("odometry_max_samples", odometry_max_samples, 2, 1000000);
+    v("relocalise_after_s", relocalise_after_s, 0.0, 60.0);
+    v("relocalise_step_range", relocalise_step_range, 0, 10);
+    v("match_riser_fraction", match_riser_fraction, 0.01, 1.0);
+    v("match_tread_fraction", match_tread_fraction, 0.01, 1.0);
+    v("max_average_weight", max_average_weight, 1, 1000000);
+    v("max_plane_points", max_plane_points, 0, 1024);
+    v("default_riser_m", default_riser_m, 0.01, 1.0);
+    v("default_tread_m", default_tread_m, 0.01, 2.0);
+    v("landing_min_depth_m", landing_min_depth_m, 0.0, 10.0);
+    v("min_confirmations", min_confirmations, 1, 1000);
+    v("max_model_steps", max_model_steps, 1, 1024);
+    v("monotonic_tolerance_m", monotonic_tolerance_m, 0.0, 1.0);
+    v("direction_window", direction_window, 1, 1000);
+    v("direction_majority", direction_majority, 1, 1000);
+    v("max_reconstructed_gap_steps", max_reconstructed_gap_steps, 0, 64);
+    v("reconstruct_tolerance", reconstruct_tolerance, 0.0, 1.0);
+    v("lost_after_s", lost_after_s, 0.001, 3600.0);
+    v("reset_after_s", reset_after_s, 0.001, 86400.0);
+    v("time_jump_back_s", time_jump_back_s, 0.001, 86400.0);
+  }
 };
 
-// Reads a JSON object of parameters (any subset). Throws std::runtime_error
-// naming the file and key on an unknown key, a wrong type, a value out of range
-// or an unreadable file.
-TrackerConfig load_tracker_config(const std::string& json_path);
+// The "tracker" object of a config (any subset of the keys). Throws
+// std::runtime_error naming `file`, the key and its allowed range on an unknown
+// key, a wrong type, a value out of range or values that contradict each other.
+TrackerConfig tracker_config_from_json(const nlohmann::json& object, const std::string& file);
+// The "tracker" object of the config file at `path` (common/config_file.hpp); "" = defaults.
+TrackerConfig load_tracker_config(const std::string& path);
+// The effective values, as the config file's "tracker" object (--print-config).
+nlohmann::ordered_json to_json(const TrackerConfig& c);
 
-// Throws std::runtime_error naming the first parameter out of range.
+// Throws std::runtime_error naming the first parameter out of range (values
+// set in code: a command-line override).
 void validate(const TrackerConfig& c);
 
 }  // namespace stairs

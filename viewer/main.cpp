@@ -1,6 +1,9 @@
 // stairs-viewer: see what the pipeline sees, live (LCM + a window) or headless.
 #include "viewer/app.hpp"
 
+#include "chain/config.hpp"
+#include "common/config_file.hpp"
+
 #include <exception>
 #include <iostream>
 
@@ -17,8 +20,7 @@ int main(int argc, char** argv) {
       .add("every", "K", "headless: draw every K-th frame", "1")
       .add("max-frames", "N", "headless: stop after N input frames (0 = all)", "0")
       .add("video-fps", "HZ", "headless: frame rate of a video output", "15")
-      .add("perception-config", "JSON", "headless: perception config file (default: built-in defaults)")
-      .add("tracker-config", "JSON", "headless: tracker config file (default: built-in defaults)")
+      .config_options("\"perception\" and \"tracker\" (headless, for depth-only inputs)")
       .add("normals", "", "start with the normal image instead of the depth image")
       .add("lcm-url", "URL", "live: LCM URL (empty = LCM's default)")
       .add("depth-channel", "NAME", "depth frames", "STAIRS_DEPTH")
@@ -33,6 +35,10 @@ int main(int argc, char** argv) {
       .add("verbose", "", "print the status line once a second even when stderr is not a terminal");
   opts.parse(argc, argv);
   try {
+    if (opts.flag("print-config")) {
+      stairs::print_config(std::cout, stairs::to_json(stairs::load_chain_config(opts.get("config"))));
+      return 0;
+    }
     return opts.has("render") ? stairs::viewer::run_render(opts) : stairs::viewer::run_live(opts);
   } catch (const std::exception& e) {
     std::cerr << "stairs-viewer: " << e.what() << "\n";

@@ -2,19 +2,11 @@
 // sequence directory into PNGs, a video, or one PNG.
 #include "viewer/app.hpp"
 
+#include "chain/offline_chain.hpp"
 #include "common/frame_source.hpp"
 #include "common/lcm_log.hpp"
 #include "viewer/layout.hpp"
 #include "viewer/view_state.hpp"
-
-#ifdef STAIRS_VIEWER_WITH_PERCEPTION
-#include "perception/config.hpp"
-#include "perception/pipeline.hpp"
-#endif
-#ifdef STAIRS_VIEWER_WITH_TRACKER
-#include "tracker/config.hpp"
-#include "tracker/tracker.hpp"
-#endif
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
@@ -142,32 +134,17 @@ int64_t render_recorded(const std::string& path, const Channels& ch, const Selec
 int64_t render_pipeline(const Options& opts, const std::string& input, const Channels& ch, const Selection& sel,
                         ImageMode mode, const ViewerConfig& cfg, Sink& sink) {
   auto source = open_frame_source(input, ch.depth, ch.truth);
-#ifdef STAIRS_VIEWER_WITH_PERCEPTION
-  Pipeline pipeline(opts.has("perception-config") ? load_perception_config(opts.get("perception-config"))
-                                                  : PerceptionConfig{});
-#else
-  std::cerr << "stairs-viewer: built without stairs_perception: drawing depth and ground truth only\n";
-#endif
-#ifdef STAIRS_VIEWER_WITH_TRACKER
-  Tracker tracker(opts.has("tracker-config") ? load_tracker_config(opts.get("tracker-config")) : TrackerConfig{});
-#endif
-  (void)opts;
+  OfflineChain chain(load_chain_config(opts.get("config")));
   SourceFrame frame;
   int64_t index = 0;
   for (; source->next(frame); ++index) {
-    std::optional<Observation> obs;
-    std::optional<StairModel> model;
-#ifdef STAIRS_VIEWER_WITH_PERCEPTION
-    obs = pipeline.process(frame.image);
-#ifdef STAIRS_VIEWER_WITH_TRACKER
-    model = tracker.update(*obs);
-#endif
-#endif
+    chain.add_inputs(frame);
+    const ChainStep step = chain.process(frame.image);
     if (sel.draw(index)) {
       ViewInput in;
       in.depth = &frame.image;
-      in.observation = obs ? &*obs : nullptr;
-      in.model = model ? &*model : nullptr;
+      in.observation = &step.observation;
+      in.model = step.model;
       in.truth = source->ground_truth() ? &*source->ground_truth() : nullptr;
       in.truth_frame = frame.truth ? &*frame.truth : nullptr;
       in.mode = mode;

@@ -1,6 +1,7 @@
 // stairs-perception: STAIRS_DEPTH in, STAIRS_OBSERVATION out. Thin: decode,
 // validate, hand the newest frame to a worker (older ones are dropped and
 // counted), Pipeline::process, encode, publish, report status.
+#include "common/config_file.hpp"
 #include "common/daemon.hpp"
 #include "common/lcm_bridge.hpp"
 #include "perception/config.hpp"
@@ -78,16 +79,20 @@ int main(int argc, char** argv) {
       .add("status-channel", "NAME", "channel of daemon_status_t", "STAIRS_STATUS")
       .add("imu-channel", "NAME", "channel of optional IMU samples (imu_t; config imu.to_camera_* turns them)",
            "STAIRS_IMU")
-      .add("config", "FILE", "perception parameters as JSON (any subset of PerceptionConfig)", "")
+      .config_options("\"perception\"")
       .add("verbose", "", "print the status line once a second even without a terminal");
   opts.parse(argc, argv);
 
   stairs::PerceptionConfig config;
   try {
-    if (!opts.get("config").empty()) config = stairs::load_perception_config(opts.get("config"));
+    config = stairs::load_perception_config(opts.get("config"));
   } catch (const std::exception& e) {
     std::cerr << "stairs-perception: " << e.what() << "\n";
     return 2;
+  }
+  if (opts.flag("print-config")) {
+    stairs::print_config(std::cout, {{"perception", stairs::to_json(config)}});
+    return 0;
   }
   lcm::LCM lcm(opts.get("lcm-url"));
   if (!lcm.good()) {

@@ -22,7 +22,7 @@ eval::RunResult walk(const std::string& name, const std::string& args, const std
                           " --fps 10 --seed 5 --log '" + log.string() + "' > /dev/null";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   eval::ReplayOptions options;
-  options.config_path = config;
+  options.config = load_chain_config(config);
   eval::RunResult r = eval::replay(log.string(), options);
   fs::remove(log);
   EXPECT_TRUE(r.score) << name;

@@ -5,10 +5,9 @@
 // except for the frames the "live chain" dropped.
 #include "common/lcm_bridge.hpp"
 #include "common/lcm_log.hpp"
-#include "perception/pipeline.hpp"
+#include "chain/offline_chain.hpp"
 #include "tools/recorded.hpp"
 #include "tools/replay.hpp"
-#include "tracker/tracker.hpp"
 
 #include <gtest/gtest.h>
 
@@ -28,8 +27,7 @@ bool dropped(int frame) { return frame % 5 == 3; }
 StairModel record(const std::string& path) {
   LogReader in(kLog);
   LogWriter out(path);
-  Pipeline pipeline{PerceptionConfig{}};
-  Tracker tracker{TrackerConfig{}};
+  OfflineChain chain;
   LogEvent ev;
   std::string error;
   int frame = 0;
@@ -42,16 +40,16 @@ StairModel record(const std::string& path) {
     if (!decode_message(ev.data.data(), ev.data.size(), msg, error) || !from_lcm(msg, image, error))
       throw std::runtime_error(error);
     if (!dropped(frame)) {
-      const Observation obs = pipeline.process(image);
-      tracker.update(obs);
+      const ChainStep step = chain.process(image);
+      const Observation& obs = step.observation;
       out.write_message("STAIRS_OBSERVATION", ev.timestamp_us + 3000, to_lcm(obs, ev.timestamp_us + 3000));
       out.write_message("STAIRS_MODEL", ev.timestamp_us + 4000,
-                        to_lcm(tracker.model(), ev.timestamp_us + 4000, obs.source_utime, obs.source_seq));
+                        to_lcm(*step.model, ev.timestamp_us + 4000, obs.source_utime, obs.source_seq));
     }
     ++frame;
   }
   out.close();
-  return tracker.model();
+  return chain.model();
 }
 
 TEST(EvalRecorded, ScoresWhatWasPublishedAndCountsDroppedFramesAsMissed) {

@@ -29,11 +29,11 @@ TEST(PerceptionEdgesDepthJumps, NosingsOfADescendingFlight) {
     if (truth.visible_steps.size() < 3) continue;
     ++frames;
     NormalGrid grid;
-    compute_normals(img, cfg, grid);
+    compute_normals(img, cfg.normals, grid);
     // The true gravity isolates this stage from the pose estimate.
     const Eigen::Vector3f up = (pose.linear().transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
     const Eigen::Matrix3f R = pose_from_up(up).gravity_rotation.toRotationMatrix().cast<float>();
-    const std::vector<JumpEdge> edges = depth_jump_edges(grid, R, 0.0f, cfg);
+    const std::vector<JumpEdge> edges = depth_jump_edges(grid, R, 0.0f, cfg.edges_depth_jumps, cfg.stair.min_step_width_m);
     // Recall over the visible steps; precision over every real nosing (a far
     // step with fewer than 500 valid pixels still has a real edge).
     std::vector<Eigen::Vector3d> nosings, all_nosings;
@@ -43,7 +43,7 @@ TEST(PerceptionEdgesDepthJumps, NosingsOfADescendingFlight) {
       ++edges_total;
       EXPECT_EQ(e.edge.source, EdgeSource::DepthJump);
       EXPECT_EQ(e.edge.type, EdgeType::Convex);
-      EXPECT_GE(e.t_max - e.t_min, cfg.min_step_width_m);
+      EXPECT_GE(e.t_max - e.t_min, cfg.stair.min_step_width_m);
       for (const Eigen::Vector3d& n : all_nosings)
         if (std::abs(e.s - n.x()) < 0.04 && std::abs(e.z - n.z()) < 0.03) {
           ++matched_edges;

@@ -50,10 +50,10 @@ double xz_distance(const Edge& e, const Eigen::Vector2d& xz) {
 
 std::vector<Edge> edges_of(const DepthImage& img, double pitch_deg, double roll_deg, const PerceptionConfig& cfg) {
   NormalGrid grid;
-  compute_normals(img, cfg, grid);
+  compute_normals(img, cfg.normals, grid);
   // The true gravity isolates this stage from the pose estimate.
   const Eigen::Matrix3f R = test::optical_to_world(pitch_deg, roll_deg).cast<float>();
-  return normal_image_edges(grid, R, 0.0f, cfg);
+  return normal_image_edges(grid, R, 0.0f, cfg.edges_normal_image, cfg.normals.grid_cell_px, cfg.stair.min_step_width_m);
 }
 
 TEST(PerceptionEdgesNormalImage, ConvexAtNosingsConcaveAtRiserFeet) {
@@ -71,7 +71,7 @@ TEST(PerceptionEdgesNormalImage, ConvexAtNosingsConcaveAtRiserFeet) {
         const Eigen::Vector3f u = (e.end - e.start).normalized();
         EXPECT_LT(std::abs(u.z()), std::sin(5.0 * M_PI / 180));  // horizontal
         EXPECT_LT(std::abs(u.x()), std::sin(5.0 * M_PI / 180));  // across the stair axis (x)
-        EXPECT_GE((e.end - e.start).norm(), cfg.min_step_width_m);
+        EXPECT_GE((e.end - e.start).norm(), cfg.stair.min_step_width_m);
         // Every edge lies on a real edge of its type.
         double best = 1e9;
         for (const Expected& t : truth)

@@ -11,7 +11,7 @@ namespace {
 TEST(PerceptionNormals, FloorNormalsPointUpTowardsTheCamera) {
   const DepthImage img = test::render_stairs(320, 240, -40, 5, 1.0, 0);
   NormalGrid g;
-  compute_normals(img, PerceptionConfig{}, g);
+  compute_normals(img, NormalsConfig{}, g);
   EXPECT_EQ(g.width, 160);
   EXPECT_EQ(g.height, 120);
   // Floor normal (world up) in optical coordinates.
@@ -32,7 +32,7 @@ TEST(PerceptionNormals, EmptyAndTinyFramesGiveNoNormals) {
   DepthImage img;
   img.K = {3, 2, 1, 1, 1, 1};
   img.depth.assign(6, 1000);
-  compute_normals(img, cfg, g);
+  compute_normals(img, cfg.normals, g);
   for (uint8_t h : g.has_normal) EXPECT_EQ(h, 0);
 }
 
@@ -40,9 +40,9 @@ TEST(PerceptionRegionGrowing, StairsAreSegmentedIntoTreadsAndRisers) {
   const DepthImage img = test::render_stairs(640, 480, -35, 0, 1.0, 3, 1.2);
   PerceptionConfig cfg;
   NormalGrid g;
-  compute_normals(img, cfg, g);
+  compute_normals(img, cfg.normals, g);
   std::vector<int> labels;
-  const auto segs = grow_regions(g, cfg, 640, 480, labels);
+  const auto segs = grow_regions(g, cfg.region_growing, 640, 480, labels);
   // Floor, 3 treads, 3 risers; over-segmentation is allowed, mixing is not.
   ASSERT_GE(segs.size(), 7u);
   for (const Segment& s : segs) EXPECT_LT(s.rms_m, 0.01f);
@@ -51,12 +51,12 @@ TEST(PerceptionRegionGrowing, StairsAreSegmentedIntoTreadsAndRisers) {
 
 TEST(PerceptionRegionGrowing, SmallPlanesAreDroppedWithTheScaledThreshold) {
   PerceptionConfig cfg;
-  cfg.min_plane_px_320 = 1000000;  // larger than any frame
+  cfg.region_growing.min_plane_px_320 = 1000000;  // larger than any frame
   const DepthImage img = test::render_stairs(320, 240, -35, 0, 1.0, 0);
   NormalGrid g;
-  compute_normals(img, cfg, g);
+  compute_normals(img, cfg.normals, g);
   std::vector<int> labels;
-  EXPECT_TRUE(grow_regions(g, cfg, 320, 240, labels).empty());
+  EXPECT_TRUE(grow_regions(g, cfg.region_growing, 320, 240, labels).empty());
   for (int l : labels) EXPECT_EQ(l, -1);
 }
 
@@ -79,10 +79,10 @@ TEST(PerceptionGravity, PitchAndRollFromTheFloorAndSteps) {
   const DepthImage img = test::render_stairs(640, 480, -30, 3, 1.1, 3, 1.5);
   PerceptionConfig cfg;
   NormalGrid g;
-  compute_normals(img, cfg, g);
+  compute_normals(img, cfg.normals, g);
   std::vector<int> labels;
-  const auto segs = grow_regions(g, cfg, 640, 480, labels);
-  const auto up = estimate_up(segs, cfg);
+  const auto segs = grow_regions(g, cfg.region_growing, 640, 480, labels);
+  const auto up = estimate_up(segs, cfg.gravity);
   ASSERT_TRUE(up.has_value());
   const CameraPose p = pose_from_up(*up);
   EXPECT_NEAR(p.pitch_deg, -30, 0.3);
@@ -94,7 +94,7 @@ TEST(PerceptionGravity, NoHorizontalPlaneNoPose) {
   Segment wall;
   wall.normal = {0, 0, -1};
   wall.cells.assign(5000, 0);
-  EXPECT_FALSE(estimate_up({wall}, PerceptionConfig{}).has_value());
+  EXPECT_FALSE(estimate_up({wall}, GravityConfig{}).has_value());
 }
 
 }  // namespace
@@ -123,25 +123,25 @@ TEST(PerceptionGravity, PriorTellsTreadsFromDominantRisers) {
   // A robot looking up a flight at +15 deg: the risers are 75 deg from image
   // up and dominate; alone, the frame is ambiguous and the risers win.
   const auto segs = stair_segments(15, 2000, 10000, 0);
-  const auto alone = estimate_up(segs, PerceptionConfig{});
+  const auto alone = estimate_up(segs, GravityConfig{});
   ASSERT_TRUE(alone.has_value());
   EXPECT_LT(alone->dot(true_up(15)), 0.5f);
-  const auto tracked = estimate_up(segs, PerceptionConfig{}, true_up(10));
+  const auto tracked = estimate_up(segs, GravityConfig{}, true_up(10));
   ASSERT_TRUE(tracked.has_value());
   EXPECT_GT(tracked->dot(true_up(15)), std::cos(0.1 * M_PI / 180));
 }
 
 TEST(PerceptionGravity, VerticalPlanesFixUpWhenTreadsAreMissing) {
   const auto segs = stair_segments(15, 0, 10000, 3000);
-  const auto up = estimate_up(segs, PerceptionConfig{}, true_up(9));
+  const auto up = estimate_up(segs, GravityConfig{}, true_up(9));
   ASSERT_TRUE(up.has_value());
   EXPECT_GT(up->dot(true_up(15)), std::cos(0.1 * M_PI / 180));
   // Risers alone keep the prior's roll and take their pitch.
-  const auto risers_only = estimate_up(stair_segments(15, 0, 10000, 0), PerceptionConfig{}, true_up(9));
+  const auto risers_only = estimate_up(stair_segments(15, 0, 10000, 0), GravityConfig{}, true_up(9));
   ASSERT_TRUE(risers_only.has_value());
   EXPECT_GT(risers_only->dot(true_up(15)), std::cos(0.1 * M_PI / 180));
   // A plane neither near the prior nor near vertical under it gives nothing.
-  EXPECT_FALSE(estimate_up(stair_segments(15, 0, 10000, 0), PerceptionConfig{}, true_up(-35)).has_value());
+  EXPECT_FALSE(estimate_up(stair_segments(15, 0, 10000, 0), GravityConfig{}, true_up(-35)).has_value());
 }
 
 TEST(PerceptionGravity, TinyTreadsYieldToTheVerticalPlanes) {
@@ -151,7 +151,7 @@ TEST(PerceptionGravity, TinyTreadsYieldToTheVerticalPlanes) {
   noise.normal = true_up(2);  // 13 deg off: a badly determined small patch
   noise.cells.assign(100, 0);
   segs.push_back(noise);
-  const auto up = estimate_up(segs, PerceptionConfig{}, true_up(9));
+  const auto up = estimate_up(segs, GravityConfig{}, true_up(9));
   ASSERT_TRUE(up.has_value());
   EXPECT_GT(up->dot(true_up(15)), std::cos(0.1 * M_PI / 180));
 }

@@ -115,7 +115,7 @@ TEST(PerceptionRealdata, NormalImageEdgesAtTheNosings) {
                   e.end.x(), e.end.y(), e.end.z(), e.support);
       (e.type == EdgeType::Convex ? convex : concave)++;
     }
-    const double min_rows = 2.0 * cfg.normal_radius_cells * grid_cell_px(cfg, img.K.width);
+    const double min_rows = 2.0 * cfg.normals.radius_cells * grid_cell_px(cfg.normals, img.K.width);
     for (size_t i = 0; i + 1 < o.steps.size(); ++i) {
       const Eigen::Vector3d& n = o.steps[i].nosing_m;
       const Eigen::Vector3d next_foot(o.steps[i + 1].nosing_m.x(), o.steps[i + 1].nosing_m.y(), n.z());

@@ -19,7 +19,7 @@ void add_plane(PlaneSet& ps, PlaneKind kind, const PlaneExtent& e) {
 }
 
 TEST(PerceptionGrammar, DinBoundsWithTolerance) {
-  const PerceptionConfig c;
+  const StairConfig c;
   EXPECT_TRUE(din_riser_ok(0.17, c));
   EXPECT_TRUE(din_riser_ok(0.09, c));   // 0.14 - 40 %
   EXPECT_FALSE(din_riser_ok(0.07, c));
@@ -33,7 +33,7 @@ TEST(PerceptionGrammar, DinBoundsWithTolerance) {
 TEST(PerceptionGrammar, AscendingChainFromTheFloor) {
   const std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), level(-0.83f, 1.5f, 1.78f), level(-0.66f, 1.78f, 2.06f),
                                      level(-0.49f, 2.06f, 2.2f)};
-  const StairChain ch = best_chain(levels, PerceptionConfig{});
+  const StairChain ch = best_chain(levels, StairConfig{});
   EXPECT_EQ(ch.direction, Direction::Up);
   EXPECT_EQ(ch.steps(), 3);
 }
@@ -45,22 +45,22 @@ TEST(PerceptionGrammar, LevelsThatRiseThroughTheRiseAreNoSteps) {
   std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), level(-0.83f, 1.5f, 1.78f), level(-0.66f, 1.78f, 2.06f),
                                level(-0.49f, 2.06f, 2.2f)};
   for (Level& l : levels) l.reach_above_m = l.reach_below_m = 0.06f;  // within noise of a 0.17 m rise
-  EXPECT_EQ(best_chain(levels, PerceptionConfig{}).steps(), 3);
+  EXPECT_EQ(best_chain(levels, StairConfig{}).steps(), 3);
   for (Level& l : levels) l.reach_above_m = l.reach_below_m = 0.1f;  // a slope: more than half the rise
-  EXPECT_EQ(best_chain(levels, PerceptionConfig{}).steps(), 0);
+  EXPECT_EQ(best_chain(levels, StairConfig{}).steps(), 0);
 }
 
 TEST(PerceptionGrammar, DescendingChainFromTheLanding) {
   // Going down each lower tread is seen beyond the nosing above it.
   const std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), level(-1.17f, 1.6f, 1.78f), level(-1.34f, 1.9f, 2.06f),
                                      level(-1.51f, 2.2f, 3.5f)};
-  const StairChain ch = best_chain(levels, PerceptionConfig{});
+  const StairChain ch = best_chain(levels, StairConfig{});
   EXPECT_EQ(ch.direction, Direction::Down);
   EXPECT_EQ(ch.steps(), 3);
   PlaneSet ps;
-  std::vector<Step> steps = steps_from_chain(ps, ch);
+  std::vector<Step> steps = steps_from_chain(ps, ch, StairConfig{});
   ASSERT_EQ(steps.size(), 3u);
-  reconstruct(ps, ch, steps, PerceptionConfig{});
+  reconstruct(ps, ch, steps, StairConfig{});
   // Occluded tread depths come from nosing to nosing; risers are rebuilt.
   EXPECT_NEAR(*steps[1].tread_depth_m, 0.28, 1e-5);
   EXPECT_NEAR(*steps[2].tread_depth_m, 0.28, 1e-5);
@@ -78,11 +78,11 @@ TEST(PerceptionReconstruction, AMidLandingEndingInADropIsTheLastStepGoingDown) {
   std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), level(-1.17f, 1.6f, 1.78f), level(-1.34f, 1.9f, 2.06f),
                                level(-1.51f, 2.2f, 3.5f)};
   levels.back().far_edge = true;
-  const PerceptionConfig cfg;
+  const StairConfig cfg;
   const StairChain ch = best_chain(levels, cfg);
   ASSERT_EQ(ch.steps(), 3);
   PlaneSet ps;
-  std::vector<Step> steps = steps_from_chain(ps, ch);
+  std::vector<Step> steps = steps_from_chain(ps, ch, StairConfig{});
   reconstruct(ps, ch, steps, cfg);
   ASSERT_EQ(steps.size(), 4u);
   EXPECT_TRUE(steps[3].landing);
@@ -93,7 +93,7 @@ TEST(PerceptionReconstruction, AMidLandingEndingInADropIsTheLastStepGoingDown) {
 }
 
 TEST(PerceptionGrammar, NoChainOnImplausibleLevels) {
-  const PerceptionConfig c;
+  const StairConfig c;
   // A table top 0.75 m above the floor.
   EXPECT_EQ(best_chain({level(-1.0f, 0.5f, 3.0f), level(-0.25f, 1.5f, 2.3f)}, c).steps(), 0);
   // Levels 3 cm apart: no riser.
@@ -158,7 +158,7 @@ TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
   cut.top_in_view = false;  // continues above the image: its top is no nosing
   add(PlaneKind::Riser, cut);
   add(PlaneKind::Riser, {0.6f, 0.6f, 0.2f, 0.26f, -0.45f, -0.27f, 0.6f, -0.36f});  // a chair leg
-  const PerceptionConfig cfg;
+  const StairConfig cfg;
   const std::vector<Level> levels = tread_levels(ps, {}, cfg);
   ASSERT_EQ(levels.size(), 4u);
   for (int k = 1; k < 4; ++k) {
@@ -169,7 +169,7 @@ TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
   const StairChain chain = best_chain(levels, cfg);
   EXPECT_EQ(chain.direction, Direction::Up);
   EXPECT_EQ(chain.steps(), 3);
-  std::vector<Step> steps = steps_from_chain(ps, chain);
+  std::vector<Step> steps = steps_from_chain(ps, chain, cfg);
   ASSERT_EQ(steps.size(), 3u);
   for (int k = 0; k < 3; ++k) {
     EXPECT_EQ(steps[k].riser_plane, k + 1);
@@ -202,10 +202,10 @@ TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
   PlaneExtent sliver{1.5f, 1.5f, -0.5f, 0.5f, -0.64f, -0.61f, 1.5f, -0.625f};
   sliver.top_in_view = false;
   add(PlaneKind::Riser, sliver);
-  const PerceptionConfig cfg;
+  const StairConfig cfg;
   const StairChain chain = best_chain(tread_levels(ps, {}, cfg), cfg);
   ASSERT_EQ(chain.direction, Direction::Up);
-  std::vector<Step> steps = steps_from_chain(ps, chain);
+  std::vector<Step> steps = steps_from_chain(ps, chain, cfg);
   ASSERT_EQ(steps.size(), 2u);
   reconstruct(ps, chain, steps, cfg);
   ASSERT_EQ(steps.size(), 3u);
@@ -216,7 +216,7 @@ TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
 
   // Less than min_riser_seen_fraction of a rise in view is no step.
   ps.extents[5].z_max = ps.extents[5].z_min + 0.5f * cfg.min_riser_seen_fraction * 0.18f;
-  steps = steps_from_chain(ps, chain);
+  steps = steps_from_chain(ps, chain, cfg);
   reconstruct(ps, chain, steps, cfg);
   EXPECT_EQ(steps.size(), 2u);
 }

@@ -240,24 +240,47 @@ TEST(Tracker, ResetForgetsTheModel) {
   EXPECT_EQ(tracker.model().state, TrackingState::None);
 }
 
-TEST(TrackerConfig, LoadsJsonAndNamesUnknownKeys) {
+TEST(TrackerConfig, LoadsTheTrackerSectionAndNamesKeysAndRanges) {
   const std::string path = std::string(STAIRS_BINARY_DIR) + "/tracker_config_test.json";
-  std::ofstream(path) << R"({"reset_after_s": 3.5, "min_confirmations": 3})";
+  const auto error = [&](const std::string& text) {
+    std::ofstream(path) << text;
+    try {
+      load_tracker_config(path);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::ofstream(path) << R"({"tracker": {"reset_after_s": 3.5, "min_confirmations": 3},
+                             "perception": {"stair": {"min_steps": 3}}})";
   const TrackerConfig c = load_tracker_config(path);
   EXPECT_DOUBLE_EQ(c.reset_after_s, 3.5);
   EXPECT_EQ(c.min_confirmations, 3);
   EXPECT_DOUBLE_EQ(c.icp_max_distance_m, 1.0);
-  std::ofstream(path) << R"({"reset_after_seconds": 3.5})";
+  EXPECT_NE(error(R"({"tracker": {"reset_after_seconds": 3.5}})").find("unknown key 'tracker.reset_after_seconds'"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"tracker": {"min_confirmations": "two"}})").find("'tracker.min_confirmations' must be an integer"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"tracker": {"icp_min_distance_m": 2.0}})").find("'tracker.icp_min_distance_m' must be at most"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"tracker": {"min_inlier_ratio": 1.5}})").find("allowed 0..1"), std::string::npos);
+  // A flat file (the layout before the one config file) is refused, naming the key.
+  EXPECT_NE(error(R"({"reset_after_s": 3.5})").find("unknown key 'reset_after_s'"), std::string::npos);
+  std::remove(path.c_str());
+}
+
+// A value set in code (stairs-tracker --reset-after-s) is checked against the same range.
+TEST(TrackerConfig, ValidateNamesTheKeyAndTheAllowedRange) {
+  TrackerConfig c;
+  c.reset_after_s = -1.0;
   try {
-    load_tracker_config(path);
-    FAIL() << "unknown key accepted";
+    validate(c);
+    FAIL() << "a negative reset_after_s was accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("reset_after_seconds"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'tracker.reset_after_s' = -1 is out of range: allowed 0.001..86400"),
+              std::string::npos)
+        << e.what();
   }
-  std::ofstream(path) << R"({"min_confirmations": "two"})";
-  EXPECT_THROW(load_tracker_config(path), std::runtime_error);
-  std::ofstream(path) << R"({"icp_min_distance_m": 2.0})";
-  EXPECT_THROW(load_tracker_config(path), std::runtime_error);
 }
 
 TEST(Tracker, RejectsARegistrationThatJumpsAwayFromTheMotionPrior) {

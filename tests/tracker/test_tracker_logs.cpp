@@ -6,9 +6,8 @@
 #include "drivers/sim/render.hpp"
 #include "drivers/sim/scene.hpp"
 #include "drivers/sim/trajectory.hpp"
-#include "perception/pipeline.hpp"
+#include "chain/offline_chain.hpp"
 #include "tools/score.hpp"
-#include "tracker/tracker.hpp"
 
 #include <gtest/gtest.h>
 
@@ -35,24 +34,23 @@ void run(const Sequence& seq) {
   const sim::Trajectory trajectory(scene, tc);
   const Intrinsics K{640, 480, 525, 525, 319.5, 239.5};
   sim::Renderer renderer(scene, K, sim::SensorModel{}, 7);
-  Pipeline perception;
-  Tracker tracker;
+  OfflineChain chain;
   int frames = 0;
   for (int k = 0; k < trajectory.frames(); k += seq.keep_every) {
     const double t = trajectory.time_s(k);
     if (t >= seq.gap_from_s && t < seq.gap_to_s) continue;
     const DepthImage img = renderer.render(trajectory.pose(k), static_cast<int64_t>(t * 1e6), k);
-    tracker.update(perception.process(img));
+    chain.process(img);
     ++frames;
   }
-  const StairModel& m = tracker.model();
+  const StairModel& m = chain.model();
   // stairs-eval's own scoring of the final model (tables 6.2-6.4).
   const eval::Score s = eval::score_run({}, &m.flights, renderer.stair_truth());
   const double riser_cm = s.riser_error_cm.mean_abs.value_or(NAN), tread_cm = s.tread_error_cm.mean_abs.value_or(NAN);
   std::printf("[%s %s %.1f m/s keep 1/%d gap %.1f-%.1f s] frames %d fused %d rejected %lld: steps %d/%d, "
               "false %d, riser %.2f cm, tread %.2f cm\n",
               seq.preset, seq.descending ? "down" : "up", seq.speed_mps, seq.keep_every, seq.gap_from_s,
-              seq.gap_to_s, frames, m.observations_fused, static_cast<long long>(tracker.rejected_registrations()),
+              seq.gap_to_s, frames, m.observations_fused, static_cast<long long>(chain.tracker().rejected_registrations()),
               s.model_steps_detected, s.model_steps_real, s.model_false_steps, riser_cm, tread_cm);
   EXPECT_EQ(s.model_steps_detected, s.model_steps_real);
   EXPECT_EQ(s.model_false_steps, 0);

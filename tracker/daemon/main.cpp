@@ -1,6 +1,7 @@
 // stairs-tracker: STAIRS_OBSERVATION in, STAIRS_MODEL (and its steps-only twin
 // STAIRS_MODEL_STEPS) out on every observation; reset on STAIRS_TRACKER_COMMAND.
 // Thin: decode, validate, Tracker::update, encode, publish, report status.
+#include "common/config_file.hpp"
 #include "common/daemon.hpp"
 #include "common/lcm_bridge.hpp"
 #include "tracker/config.hpp"
@@ -90,14 +91,14 @@ int main(int argc, char** argv) {
       .add("odometry-channel", "NAME", "channel of optional odometry (pose_t, bot_core.pose_t's layout)",
            "STAIRS_ODOMETRY")
       .add("status-channel", "NAME", "channel of daemon_status_t", "STAIRS_STATUS")
-      .add("config", "FILE", "tracker parameters as JSON (any subset of TrackerConfig)", "")
+      .config_options("\"tracker\"")
       .add("reset-after-s", "S", "a model lost this long is dropped when a stair is in view again (overrides --config)", "")
       .add("verbose", "", "print the status line once a second even without a terminal");
   opts.parse(argc, argv);
 
   stairs::TrackerConfig config;
   try {
-    if (!opts.get("config").empty()) config = stairs::load_tracker_config(opts.get("config"));
+    config = stairs::load_tracker_config(opts.get("config"));
     if (opts.has("reset-after-s")) config.reset_after_s = opts.get_double("reset-after-s");
     stairs::validate(config);
   } catch (const std::exception& e) {
@@ -105,6 +106,10 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  if (opts.flag("print-config")) {
+    stairs::print_config(std::cout, {{"tracker", stairs::to_json(config)}});
+    return 0;
+  }
   lcm::LCM lcm(opts.get("lcm-url"));
   if (!lcm.good()) {
     std::cerr << "stairs-tracker: cannot open LCM URL '" << opts.get("lcm-url") << "'\n";
