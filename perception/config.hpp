@@ -222,6 +222,9 @@ struct DepthJumpEdgesConfig {
 
 // --- edges_normal_image (thesis 3.4.1): gravity-aligned normals as colours, Canny, contours, Hough
 struct NormalImageEdgesConfig {
+  bool enabled = false;            // off by default: no later stage reads these edges, and with the
+                                   // depth-jump edges and planes they changed no figure (BENCHMARKS.md
+                                   // ablation); on, they go into the observation (viewer, diagnosis)
   int blur_cells = 1;              // cells; Gaussian blur radius before Canny: the two edges of a
                                    // rounded nosing's band of in-between normals become one
   float canny_low = 100.0f;        // Canny hysteresis thresholds on the 3x3 Sobel L1 gradient
@@ -242,6 +245,7 @@ struct NormalImageEdgesConfig {
 
   template <class V>
   void visit(V& v) {
+    v("enabled", enabled);
     v("blur_cells", blur_cells, 0, 16);
     v("canny_low", canny_low, 0.0f, 2000.0f);
     v("canny_high", canny_high, 0.0f, 2000.0f);

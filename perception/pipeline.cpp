@@ -81,11 +81,15 @@ Observation Pipeline::process(const DepthImage& frame) {
   const Eigen::Matrix3f R = obs.camera.gravity_rotation.toRotationMatrix().cast<float>();
   PlaneSet ps = plane_geometry(grid_, segments, R, cfg_.plane_geometry, cfg_.output);
   clock.mark("plane_geometry");
-  const std::vector<JumpEdge> jump_edges = depth_jump_edges(grid_, R, ps.yaw_rad, cfg_.edges_depth_jumps, cfg_.stair.min_step_width_m);
+  const std::vector<JumpEdge> jump_edges =
+      depth_jump_edges(grid_, R, ps.yaw_rad, cfg_.edges_depth_jumps, cfg_.stair.min_step_width_m);
   clock.mark("edges_depth_jumps");
-  const std::vector<Edge> normal_edges = normal_image_edges(grid_, R, ps.yaw_rad, cfg_.edges_normal_image, cfg_.normals.grid_cell_px,
-                                                          cfg_.stair.min_step_width_m);
-  clock.mark("edges_normal_image");
+  std::vector<Edge> normal_edges;
+  if (cfg_.edges_normal_image.enabled) {  // a diagnostic: nothing below reads these edges
+    normal_edges = normal_image_edges(grid_, R, ps.yaw_rad, cfg_.edges_normal_image, cfg_.normals.grid_cell_px,
+                                      cfg_.stair.min_step_width_m);
+    clock.mark("edges_normal_image");
+  }
   const std::vector<Level> levels = tread_levels(ps, jump_edges, cfg_.stair);
   clock.mark("steps");
   const StairChain chain = best_chain(levels, cfg_.stair);

@@ -95,7 +95,8 @@ double image_row(const Observation& o, const Intrinsics& K, const Eigen::Vector3
 // image (a thinner strip of tread has no normals of its own). The last step's
 // tread is cut by the image or unseen.
 TEST(PerceptionRealdata, NormalImageEdgesAtTheNosings) {
-  const PerceptionConfig cfg;
+  PerceptionConfig cfg;
+  cfg.edges_normal_image.enabled = true;  // a diagnostic, off by default
   int convex = 0, concave = 0, frames = 0, checked = 0;
   for (const auto& [dir, frame] : {std::pair<std::string, size_t>{"kinect1_thesis_up", 0}, {"kinect1_thesis_up", 1},
                                    {"kinect2_lab_up", 0}, {"kinect2_lab_up", 1}}) {
