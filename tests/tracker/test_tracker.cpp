@@ -1,8 +1,8 @@
 // The tracker on hand-built observations of known staircases (see
-// synthetic_stair.hpp): the model must hold every real step, with riser and
+// drivers/sim/synthetic_observations.hpp): the model must hold every real step, with riser and
 // tread errors under 1 cm and no false steps, at slow and walking speed, with
 // dropped frames and gaps, ascending, descending and over two flights.
-#include "synthetic_stair.hpp"
+#include "drivers/sim/synthetic_observations.hpp"
 #include "tracker/model_output.hpp"
 #include "tracker/tracker.hpp"
 

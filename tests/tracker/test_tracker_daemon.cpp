@@ -3,7 +3,7 @@
 // as invalid, the daemon survives it and stops cleanly on SIGTERM.
 #include "tests/support/multicast.hpp"
 #include "common/lcm_bridge.hpp"
-#include "synthetic_stair.hpp"
+#include "drivers/sim/synthetic_observations.hpp"
 
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>

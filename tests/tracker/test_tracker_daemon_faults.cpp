@@ -8,7 +8,7 @@
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/multicast.hpp"
 #include "common/lcm_bridge.hpp"
-#include "synthetic_stair.hpp"
+#include "drivers/sim/synthetic_observations.hpp"
 
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>

@@ -1,8 +1,8 @@
 // Tracker::update latency on one core over whole walks of hand-built
-// observations (tests/tracker/synthetic_stair.hpp) with perception's cap of 1024
+// observations (drivers/sim/synthetic_observations.hpp) with perception's cap of 1024
 // points per tread/riser. Counters: median and p95 of a single update, ms of
 // thread CPU time.
-#include "synthetic_stair.hpp"
+#include "drivers/sim/synthetic_observations.hpp"
 #include "tracker/tracker.hpp"
 
 #include <benchmark/benchmark.h>
