@@ -26,6 +26,9 @@ struct TrackerConfig {
   double max_translation_jump_m = 0.12;     // m; ICP correction vs. the motion prior (< half a tread)
   double velocity_window_s = 0.5;           // s; constant velocity from the poses this far back (noise / window)
   double max_prediction_s = 1.5;            // s; longer gaps predict no motion (relocalise instead)
+  double observed_height_max_riser_fraction = 0.5;  // of a riser: perception's height over the surface
+                                                    // beneath corrects the prior's only this close (else
+                                                    // that surface may be the next level ahead)
   double predict_camera_s = 1.0;            // s; an update that registers nothing (no steps in view,
                                             // a rejected registration) still places the camera by the
                                             // motion prior this long after the last registration
@@ -82,6 +85,7 @@ struct TrackerConfig {
     v("max_translation_jump_m", max_translation_jump_m, 0.0, 10.0);
     v("velocity_window_s", velocity_window_s, 0.001, 60.0);
     v("max_prediction_s", max_prediction_s, 0.0, 60.0);
+    v("observed_height_max_riser_fraction", observed_height_max_riser_fraction, 0.0, 2.0);
     v("predict_camera_s", predict_camera_s, 0.0, 60.0);
     v("odometry_max_age_s", odometry_max_age_s, 0.0, 10.0);
     v("odometry_max_samples", odometry_max_samples, 2, 1000000);

@@ -93,74 +93,85 @@ Pose4 Tracker::predict(int64_t utime) const {
   return p;
 }
 
+// One observation, in explicit states: a time jump back restarts the stream;
+// an out-of-order observation is dropped; with no model one is seeded; else
+// it is tracked (registered and merged, or placed by the motion prior).
 const StairModel& Tracker::update(const Observation& obs) {
   const auto start = std::chrono::steady_clock::now();
-  std::string restarted;
-  auto finish = [&]() -> const StairModel& {
-    if (!restarted.empty()) model_.status = model_.status.empty() ? restarted : restarted + "; " + model_.status;
-    model_.update_latency_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    return model_;
-  };
-  if (have_utime_ && seconds(last_utime_ - obs.source_utime) > config_.time_jump_back_s) {
-    // Time went back by more than any reordering: a new stream. The old
-    // model's poses and times mean nothing in it.
-    char what[64];
-    std::snprintf(what, sizeof what, "time went back %.1f s: model reset", seconds(last_utime_ - obs.source_utime));
-    restarted = what;
-    reset();
-    ++time_jumps_;
-  }
+  const std::string restarted = restart_if_time_went_back(obs.source_utime);
   if (have_utime_ && obs.source_utime <= last_utime_) {
     ++dropped_out_of_order_;
     model_.status = "dropped an out-of-order observation (" + std::to_string(dropped_out_of_order_) + " so far)";
-    return finish();
-  }
-  have_utime_ = true;
-  last_utime_ = obs.source_utime;
-  model_.direction = direction_.update(obs.direction);
-
-  // Odometry that covers the time since the last registration is the prior.
-  const bool with_odometry = odometry_covers(obs.source_utime);
-  // A stair lost for long is dropped once a new one is in view: until then the
-  // last model stays published. With odometry over the gap it is kept: the
-  // prior still places it.
-  if (!map_.empty() && !obs.steps.empty() &&
-      seconds(obs.source_utime - accepted_.back().first) > config_.reset_after_s && !with_odometry) {
-    reset();
+  } else {
+    have_utime_ = true;
+    last_utime_ = obs.source_utime;
     model_.direction = direction_.update(obs.direction);
+    // Odometry that covers the time since the last registration is the prior.
+    const bool with_odometry = odometry_covers(obs.source_utime);
+    drop_if_lost_long(obs, with_odometry);
+    if (map_.empty()) {
+      if (!seed(obs)) model_.status = "waiting for a stair to seed the model";
+    } else {
+      track(obs, with_odometry);
+    }
   }
-  if (map_.empty()) {
-    if (!seed(obs)) model_.status = "waiting for a stair to seed the model";
-    return finish();
-  }
+  if (!restarted.empty()) model_.status = model_.status.empty() ? restarted : restarted + "; " + model_.status;
+  model_.update_latency_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return model_;
+}
 
+std::string Tracker::restart_if_time_went_back(int64_t utime) {
+  if (!have_utime_ || seconds(last_utime_ - utime) <= config_.time_jump_back_s) return {};
+  // Time went back by more than any reordering: a new stream (a log replayed,
+  // a camera restarted). The old model's poses and times mean nothing in it.
+  char what[64];
+  std::snprintf(what, sizeof what, "time went back %.1f s: model reset", seconds(last_utime_ - utime));
+  reset();
+  ++time_jumps_;
+  return what;
+}
+
+// A stair lost for long is dropped once a new one is in view: until then the
+// last model stays published. With odometry over the gap it is kept: the
+// prior still places it.
+void Tracker::drop_if_lost_long(const Observation& obs, bool with_odometry) {
+  if (map_.empty() || obs.steps.empty() || with_odometry ||
+      seconds(obs.source_utime - accepted_.back().first) <= config_.reset_after_s)
+    return;
+  reset();
+  model_.direction = direction_.update(obs.direction);
+}
+
+// Constant velocity carries a flight's slope on across a landing; the height
+// over the surface beneath, where perception sees it, does not. But
+// perception's surface beneath is the one at the image's bottom, ahead of the
+// camera: near a flight's end it may be the next level, so a height more than
+// observed_height_max_riser_fraction of a riser off the prior is not taken.
+Pose4 Tracker::with_observed_height(const Observation& obs, Pose4 pose) const {
+  if (!obs.camera.valid || !obs.camera.height_m) return pose;
+  const double z = surface_z_m(map_, pose.t_m.x(), config_) + *obs.camera.height_m;
+  if (std::abs(z - pose.t_m.z()) < config_.observed_height_max_riser_fraction * typical_riser_m(map_, config_))
+    pose.t_m.z() = z;
+  return pose;
+}
+
+// Nothing registered: the camera stays on the stair by the motion prior (a
+// climber needs its pose on every update, e.g. on a landing with no step in
+// view) while that is fresh; attitude is the observation's own.
+void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool with_odometry, double since_accept_s,
+                             const std::string& why) {
+  if (since_accept_s > config_.lost_after_s) model_.state = TrackingState::Lost;
+  const bool predicted = obs.camera.valid && (with_odometry || since_accept_s <= config_.predict_camera_s);
+  model_.status = !predicted      ? why
+                  : with_odometry ? why + "; camera from odometry"
+                                  : why + "; camera from the motion prior";
+  publish(obs, with_observed_height(obs, prior), predicted);
+}
+
+void Tracker::track(const Observation& obs, bool with_odometry) {
   const double since_accept_s = seconds(obs.source_utime - accepted_.back().first);
   const Pose4 prior = predict(obs.source_utime);
-  // Constant velocity carries a flight's slope on across a landing; the
-  // height over the surface beneath, where perception sees it, does not. But
-  // perception's surface beneath is the one at the image's bottom, ahead of
-  // the camera: near a flight's end it may be the next level, so a height a
-  // riser or more off the prior is not taken.
-  auto by_prior = [&](Pose4 pose) {
-    if (!obs.camera.valid || !obs.camera.height_m) return pose;
-    const double z = surface_z_m(map_, pose.t_m.x(), config_) + *obs.camera.height_m;
-    if (std::abs(z - pose.t_m.z()) < 0.5 * typical_riser_m(map_, config_)) pose.t_m.z() = z;
-    return pose;
-  };
-  // Nothing registered: the camera stays on the stair by the motion prior (a
-  // climber needs its pose on every update, e.g. on a landing with no step in
-  // view) while that is fresh; attitude is the observation's own.
-  auto not_registered = [&](const std::string& why) -> const StairModel& {
-    if (since_accept_s > config_.lost_after_s) model_.state = TrackingState::Lost;
-    const bool predicted = obs.camera.valid && (with_odometry || since_accept_s <= config_.predict_camera_s);
-    model_.status = !predicted      ? why
-                    : with_odometry ? why + "; camera from odometry"
-                                    : why + "; camera from the motion prior";
-    publish(obs, by_prior(prior), predicted);
-    return finish();
-  };
-  if (!obs.camera.valid || obs.steps.empty()) return not_registered("observation without steps");
+  if (!obs.camera.valid || obs.steps.empty()) return place_by_prior(obs, prior, with_odometry, since_accept_s, "observation without steps");
 
   Pose4 start_pose = prior;
   if (const auto axis = observed_axis_angle_rad(obs)) {
@@ -177,7 +188,7 @@ const StairModel& Tracker::update(const Observation& obs) {
   // to register against, so the motion prior places it while it is fresh.
   const bool dead_reckoned = reg.within == 0 && (with_odometry || since_accept_s <= config_.max_prediction_s);
   if (dead_reckoned) {
-    reg.pose = by_prior(start_pose);
+    reg.pose = with_observed_height(obs, start_pose);
     reg.inlier_ratio = 1.0;
   }
   model_.registration_rmse_m = reg.rmse_m;
@@ -190,31 +201,37 @@ const StairModel& Tracker::update(const Observation& obs) {
     ++rejected_registrations_;
     const std::string why = "registration rejected (inliers " + std::to_string(reg.inlier_ratio) + ", jump " +
                             std::to_string(jump) + " m)";
-    // A model only its seed supports is no better evidence than this
-    // observation (a seed can be a poor frame, and with one pose there is no
-    // velocity to predict from): start again from the newer one.
-    if (model_.observations_fused <= 1 && static_cast<int>(obs.steps.size()) >= config_.min_seed_steps) {
-      reset();
-      model_.direction = direction_.update(obs.direction);
-      if (seed(obs)) {
-        model_.status = "reseeded: " + why;
-        return finish();
-      }
-    }
-    return not_registered(why);
+    if (!reseed(obs, why)) place_by_prior(obs, prior, with_odometry, since_accept_s, why);
+    return;
   }
+  accept(obs, reg.pose);
+  model_.state = relocalising ? TrackingState::Relocalised : TrackingState::Ok;
+  model_.status = dead_reckoned ? "beyond the model: placed by the motion prior" : relocalising ? "relocalised" : "ok";
+  publish(obs, reg.pose, true);
+}
 
-  merge(map_, observed_steps(obs, reg.pose), reg.pose, config_);
+// A model only its seed supports is no better evidence than this rejected
+// observation (a seed can be a poor frame, and with one pose there is no
+// velocity to predict from): start again from the newer one.
+bool Tracker::reseed(const Observation& obs, const std::string& why) {
+  if (model_.observations_fused > 1 || static_cast<int>(obs.steps.size()) < config_.min_seed_steps) return false;
+  reset();
+  model_.direction = direction_.update(obs.direction);
+  if (!seed(obs)) return false;
+  model_.status = "reseeded: " + why;
+  return true;
+}
+
+// Merges a registered observation into the map and keeps the pose history of
+// the velocity window.
+void Tracker::accept(const Observation& obs, const Pose4& pose) {
+  merge(map_, observed_steps(obs, pose), pose, config_);
   reconstruct_occluded_steps(map_, config_);
-  accepted_.emplace_back(obs.source_utime, reg.pose);
+  accepted_.emplace_back(obs.source_utime, pose);
   odometry_.forget_before(obs.source_utime);
   while (accepted_.size() > 2 && seconds(obs.source_utime - accepted_[1].first) >= config_.velocity_window_s)
     accepted_.pop_front();
   ++model_.observations_fused;
-  model_.state = relocalising ? TrackingState::Relocalised : TrackingState::Ok;
-  model_.status = dead_reckoned ? "beyond the model: placed by the motion prior" : relocalising ? "relocalised" : "ok";
-  publish(obs, reg.pose, true);
-  return finish();
 }
 
 void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid) {

@@ -12,6 +12,7 @@
 #include "tracker/stair_map.hpp"
 
 #include <deque>
+#include <string>
 
 namespace stairs {
 
@@ -37,6 +38,14 @@ class Tracker {
 
  private:
   bool seed(const Observation& obs);
+  std::string restart_if_time_went_back(int64_t utime);
+  void drop_if_lost_long(const Observation& obs, bool with_odometry);
+  void track(const Observation& obs, bool with_odometry);
+  void place_by_prior(const Observation& obs, const Pose4& prior, bool with_odometry, double since_accept_s,
+                      const std::string& why);
+  bool reseed(const Observation& obs, const std::string& why);
+  void accept(const Observation& obs, const Pose4& pose);
+  Pose4 with_observed_height(const Observation& obs, Pose4 pose) const;
   Pose4 predict(int64_t utime) const;
   bool odometry_covers(int64_t utime) const;
   void publish(const Observation& obs, const Pose4& pose, bool camera_valid);
