@@ -2,6 +2,8 @@
 // Pixel counts are given for 640x480 and scaled with the frame's resolution.
 #pragma once
 
+#include "common/limits.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -122,6 +124,8 @@ struct NormalsConfig {
   float inverse_depth_kink_per_m = 0.008f;  // 1/m; |1/z_l + 1/z_r - 2/z_c| above this = a corner or
                                              // jump between (1/z is affine in the image on a plane)
   bool smooth = true;              // 3x3 mean of the normals
+  float smooth_max_angle_deg = 25.84193f;  // deg; only neighbours this close join the mean (no blur across a
+                                           // step's bend; acos 0.9)
 
   template <class V>
   void visit(V& v) {
@@ -134,6 +138,7 @@ struct NormalsConfig {
     v("cell_valid_fraction_range_m", cell_valid_fraction_range_m, 0.01f, 100.0f);
     v("inverse_depth_kink_per_m", inverse_depth_kink_per_m, 0.0f, 10.0f);
     v("smooth", smooth);
+    v("smooth_max_angle_deg", smooth_max_angle_deg, 0.0f, 90.0f);
   }
 };
 
@@ -346,10 +351,11 @@ struct OutputConfig {
 
   template <class V>
   void visit(V& v) {
-    v("max_sample_points", max_sample_points, 1, 1024);
-    v("max_other_points", max_other_points, 0, 1024);
-    v("max_planes", max_planes, 1, 192);
-    v("max_edges", max_edges, 0, 256);
+    v("max_sample_points", max_sample_points, 1, limits::kPlanePoints);
+    v("max_other_points", max_other_points, 0, limits::kPlanePoints);
+    // Segmented planes leave a quarter of the message's planes to reconstruction (thesis 4.5).
+    v("max_planes", max_planes, 1, limits::kObservationPlanes * 3 / 4);
+    v("max_edges", max_edges, 0, limits::kObservationEdges);
   }
 };
 

@@ -116,6 +116,7 @@ void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGr
   if (!cfg.smooth) return;
   // 3x3 mean over neighbours on the same surface: noise down, edges kept.
   std::vector<Eigen::Vector3f> smoothed(raw);
+  const float cos_smooth = std::cos(cfg.smooth_max_angle_deg * static_cast<float>(M_PI) / 180.0f);
   for (int gy = 1; gy < g.height - 1; ++gy) {
     for (int gx = 1; gx < g.width - 1; ++gx) {
       const int c = g.index(gx, gy);
@@ -124,7 +125,7 @@ void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGr
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int k = g.index(gx + dx, gy + dy);
-          if (g.has_normal[k] && raw[k].dot(raw[c]) > 0.9f && near(c, k)) s += raw[k];
+          if (g.has_normal[k] && raw[k].dot(raw[c]) > cos_smooth && near(c, k)) s += raw[k];
         }
       smoothed[c] = s.normalized();
     }

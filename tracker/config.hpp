@@ -2,6 +2,8 @@
 // tracking), with its unit and default.
 #pragma once
 
+#include "common/limits.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -41,10 +43,13 @@ struct TrackerConfig {
   // --- relocalisation after a gap or loss
   double relocalise_after_s = 0.2;  // s; a gap longer than this triggers a whole-step search
   int relocalise_step_range = 2;    // whole-step shifts tried each way
+  double relocalise_min_gain = 0.05;  // of the prior's agreeing points: a shift must add this many more
 
   // --- merge (thesis 5.2)
   double match_riser_fraction = 0.5;   // steps match within this fraction of a riser height (z)
   double match_tread_fraction = 0.5;   // ... and of a tread depth (x)
+  double typical_riser_fraction = 0.3;  // of the typical riser: consecutive steps this regular give the
+                                       // typical tread (a step missing between them would double the rise)
   int max_average_weight = 30;         // running averages turn exponential after this many observations
   int max_plane_points = 1024;         // model points per plane (ICP rejections only)
   double default_riser_m = 0.17;       // m; used until the model has measured risers
@@ -77,7 +82,7 @@ struct TrackerConfig {
     v("icp_min_distance_m", icp_min_distance_m, 0.0001, 10.0);
     v("icp_distance_factor", icp_distance_factor, 0.01, 0.99);
     v("icp_iterations_per_stage", icp_iterations_per_stage, 1, 100);
-    v("registration_points_per_plane", registration_points_per_plane, 1, 1024);
+    v("registration_points_per_plane", registration_points_per_plane, 1, limits::kPlanePoints);
     v("nosing_weight_points", nosing_weight_points, 0.0, 10000.0);
     v("accept_distance_m", accept_distance_m, 0.0001, 1.0);
     v("min_inlier_ratio", min_inlier_ratio, 0.0, 1.0);
@@ -91,15 +96,17 @@ struct TrackerConfig {
     v("odometry_max_samples", odometry_max_samples, 2, 1000000);
     v("relocalise_after_s", relocalise_after_s, 0.0, 60.0);
     v("relocalise_step_range", relocalise_step_range, 0, 10);
+    v("relocalise_min_gain", relocalise_min_gain, 0.0, 10.0);
     v("match_riser_fraction", match_riser_fraction, 0.01, 1.0);
     v("match_tread_fraction", match_tread_fraction, 0.01, 1.0);
+    v("typical_riser_fraction", typical_riser_fraction, 0.01, 1.0);
     v("max_average_weight", max_average_weight, 1, 1000000);
-    v("max_plane_points", max_plane_points, 0, 1024);
+    v("max_plane_points", max_plane_points, 0, limits::kPlanePoints);
     v("default_riser_m", default_riser_m, 0.01, 1.0);
     v("default_tread_m", default_tread_m, 0.01, 2.0);
     v("landing_min_depth_m", landing_min_depth_m, 0.0, 10.0);
     v("min_confirmations", min_confirmations, 1, 1000);
-    v("max_model_steps", max_model_steps, 1, 1024);
+    v("max_model_steps", max_model_steps, 1, limits::kModelPlanes / 2);  // a riser and a tread plane each
     v("monotonic_tolerance_m", monotonic_tolerance_m, 0.0, 1.0);
     v("direction_window", direction_window, 1, 1000);
     v("direction_majority", direction_majority, 1, 1000);

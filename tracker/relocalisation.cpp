@@ -11,8 +11,8 @@ Registration relocalise(const RegistrationInput& in, const StairMap& map, const 
     Pose4 start = prior;
     start.t_m += k * step;
     const Registration r = register_to_map(in, map, start, c);
-    // A shift must beat the prior clearly: 5% more agreeing points.
-    const double margin = k == 0 ? 0.0 : 0.05 * best.inliers + 1;
+    // A shift must beat the prior clearly: relocalise_min_gain more agreeing points.
+    const double margin = k == 0 ? 0.0 : c.relocalise_min_gain * best.inliers + 1;
     if (k == 0 || r.inliers > best.inliers + margin) best = r;
     if (c.relocalise_step_range == 0) break;
   }

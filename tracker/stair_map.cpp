@@ -32,7 +32,7 @@ double typical_tread_m(const StairMap& map, const TrackerConfig& c) {
   for (size_t i = 1; i < map.steps.size(); ++i) {
     const double dz = map.steps[i].z() - map.steps[i - 1].z();
     const double dx = map.steps[i].x() - map.steps[i - 1].x();
-    if (std::abs(dz - riser) < 0.3 * riser && dx < c.landing_min_depth_m) t.push_back(dx);
+    if (std::abs(dz - riser) < c.typical_riser_fraction * riser && dx < c.landing_min_depth_m) t.push_back(dx);
   }
   return t.empty() ? c.default_tread_m : median(t);
 }
