@@ -11,10 +11,7 @@
 #include "common/lcm_bridge.hpp"
 #include "common/lcm_log.hpp"
 #include "common/sequence.hpp"
-
-#ifdef STAIRS_SIM_HAVE_ONI
 #include "drivers/openni2/oni_writer.hpp"
-#endif
 
 #include <lcm/lcm-cpp.hpp>
 
@@ -32,14 +29,131 @@ using namespace stairs::sim;
 
 namespace {
 
+// Where frames go: files (--log, --seq, --oni) and/or LCM.
 struct Outputs {
   std::unique_ptr<LogWriter> log;
   std::unique_ptr<SequenceWriter> seq;
   std::string seq_dir;
-#ifdef STAIRS_SIM_HAVE_ONI
   std::unique_ptr<OniWriter> oni;
-#endif
   std::unique_ptr<lcm::LCM> lcm;
+  bool to_files = false, publish = false;
+};
+
+Outputs open_outputs(const Options& o, const SimSetup& setup) {
+  Outputs out;
+  out.to_files = o.has("log") || o.has("seq") || o.has("oni");
+  out.publish = !out.to_files || o.flag("publish");
+  if (o.has("log")) out.log = std::make_unique<LogWriter>(o.get("log"));
+  if (o.has("seq")) {
+    out.seq_dir = o.get("seq");
+    out.seq = std::make_unique<SequenceWriter>(out.seq_dir, setup.K, 0.001);
+  }
+  if (o.has("oni"))
+    out.oni = std::make_unique<OniWriter>(o.get("oni"), setup.K.width, setup.K.height,
+                                          static_cast<int>(std::lround(setup.trajectory.fps)));
+  if (out.publish) {
+    out.lcm = std::make_unique<lcm::LCM>(o.get("lcm-url"));
+    if (!out.lcm->good()) throw std::runtime_error("cannot open LCM with URL '" + o.get("lcm-url") + "'");
+  }
+  return out;
+}
+
+// --gap START_S:LENGTH_S: no depth frame in that interval of the trajectory.
+struct Gap {
+  double start_s = 0.0, length_s = 0.0;
+  bool contains(double t_s) const { return t_s >= start_s && t_s < start_s + length_s; }
+};
+
+Gap parse_gap(const Options& o) {
+  Gap g;
+  if (!o.has("gap")) return g;
+  char colon = 0, extra = 0;
+  if (std::sscanf(o.get("gap").c_str(), "%lf%c%lf%c", &g.start_s, &colon, &g.length_s, &extra) != 3 || colon != ':' ||
+      !(g.start_s >= 0) || !(g.length_s > 0))
+    throw std::runtime_error("--gap '" + o.get("gap") + "': expected START_S:LENGTH_S, e.g. 3:5");
+  return g;
+}
+
+// Renders one trajectory frame and sends depth and ground truth to every output.
+class FrameSender {
+ public:
+  FrameSender(const Options& o, Renderer& renderer, const Trajectory& traj, Outputs& out, StatusReporter& status)
+      : renderer_(renderer),
+        traj_(traj),
+        out_(out),
+        status_(status),
+        depth_channel_(o.get("depth-channel")),
+        truth_channel_(o.get("truth-channel")),
+        zlib_(o.get_int("zlib")),
+        stair_(renderer.stair_truth()),
+        sequence_truth_(stair_) {}
+
+  void send(int f, double t_s, int64_t utime, int32_t seq) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Eigen::Isometry3d T = traj_.pose(f);
+    const DepthImage img = renderer_.render(T, utime, seq);
+    const GroundTruthFrame truth = renderer_.truth(T, t_s, img);
+    const depth_frame_t depth_msg = to_lcm(img, zlib_);
+    const ground_truth_t truth_msg = to_lcm(stair_, truth, utime, seq);
+    if (out_.log) {
+      out_.log->write_message(depth_channel_, utime, depth_msg);
+      out_.log->write_message(truth_channel_, utime, truth_msg);
+    }
+    if (out_.seq) {
+      out_.seq->write(img, t_s);
+      sequence_truth_.frames.push_back(truth);
+    }
+    if (out_.oni) out_.oni->write(img);
+    if (out_.publish) {
+      out_.lcm->publish(depth_channel_, &depth_msg);
+      out_.lcm->publish(truth_channel_, &truth_msg);
+      status_.published(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      status_.tick();
+    }
+  }
+
+  // Completes the files (an interrupted run leaves FILE.partial and a sequence
+  // directory without depth.txt: nothing that looks complete).
+  void finish(bool complete, const SimSetup& setup) {
+    if (complete && out_.log) out_.log->close();
+    if (complete && out_.seq) {
+      nlohmann::json gt = to_json(sequence_truth_);
+      gt["generator"] = setup_to_json(setup);
+      gt["visible_min_pixels"] = renderer_.visible_min_pixels();
+      for (size_t i = 0; i < gt["frames"].size(); ++i) gt["frames"][i]["seq"] = i;
+      write_json_file(out_.seq_dir + "/groundtruth.json", gt);
+      out_.seq->finish();
+    }
+    if (out_.oni) out_.oni->close();
+  }
+
+ private:
+  Renderer& renderer_;
+  const Trajectory& traj_;
+  Outputs& out_;
+  StatusReporter& status_;
+  const std::string depth_channel_, truth_channel_;
+  const int zlib_;
+  const GroundTruth stair_;
+  GroundTruth sequence_truth_;
+};
+
+// Publishing at the frame rate: sleeps until the next frame is due; a sender
+// that fell far behind starts again from now instead of bursting.
+class Pacer {
+ public:
+  explicit Pacer(double fps) : period_(std::chrono::duration<double>(1.0 / fps)) {}
+  void wait(StatusReporter& status) {
+    next_ += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period_);
+    const auto now = std::chrono::steady_clock::now();
+    if (next_ > now) std::this_thread::sleep_until(next_);
+    else if (now - next_ > std::chrono::seconds(1)) next_ = now;
+    else status.dropped("behind the frame rate");
+  }
+
+ private:
+  std::chrono::duration<double> period_;
+  std::chrono::steady_clock::time_point next_ = std::chrono::steady_clock::now();
 };
 
 // The optional robot sensors (--odometry, --imu): their samples up to each
@@ -109,11 +223,7 @@ void bench(Renderer& r, const Trajectory& traj, int frames) {
               r.intrinsics().width, r.intrinsics().height, frames, median, p95, 1000.0 / median);
 }
 
-int run(int argc, char** argv) {
-  Options o("stairs-sim",
-            "Simulated Kinect v1 on parametric staircases with exact ground truth. Without --log/--seq/--oni it\n"
-            "publishes depth_frame_t on STAIRS_DEPTH at the frame rate and ground_truth_t on STAIRS_GROUND_TRUTH\n"
-            "(same utime and seq). The same --seed gives the same bytes.");
+void add_program_options(Options& o) {
   add_setup_options(o);
   o.add("frames", "N", "stop after N frames (0 = the whole trajectory)", "0")
       .add("log", "FILE", "write an LCM log (depth + ground truth) instead of publishing")
@@ -140,6 +250,14 @@ int run(int argc, char** argv) {
       .add("start-utime", "US", "utime of the first frame in files (publishing uses the host clock)", "0")
       .add("bench", "N", "render N frames without output and print the time per frame")
       .add("verbose", "", "status line once a second even when stderr is not a terminal");
+}
+
+int run(int argc, char** argv) {
+  Options o("stairs-sim",
+            "Simulated Kinect v1 on parametric staircases with exact ground truth. Without --log/--seq/--oni it\n"
+            "publishes depth_frame_t on STAIRS_DEPTH at the frame rate and ground_truth_t on STAIRS_GROUND_TRUTH\n"
+            "(same utime and seq). The same --seed gives the same bytes.");
+  add_program_options(o);
   o.parse(argc, argv);
   if (o.flag("list")) {
     list_presets();
@@ -148,124 +266,49 @@ int run(int argc, char** argv) {
   const SimSetup setup = setup_from_options(o);
   Renderer renderer(setup.scene, setup.K, setup.sensor, setup.seed);
   const Trajectory traj(setup.scene, setup.trajectory);
-  const int zlib = o.get_int("zlib");
-  if (zlib < 0 || zlib > 9) throw std::runtime_error("--zlib must be within 0..9");
   if (o.has("bench")) {
     bench(renderer, traj, std::max(1, o.get_int("bench")));
     return 0;
   }
   int frames = traj.frames();
   if (o.get_int("frames") > 0) frames = std::min(frames, o.get_int("frames"));
-  const bool to_files = o.has("log") || o.has("seq") || o.has("oni");
-  const bool publish = !to_files || o.flag("publish");
-  const bool loop = publish && o.flag("loop");
+  if (o.get_int("zlib") < 0 || o.get_int("zlib") > 9) throw std::runtime_error("--zlib must be within 0..9");
+  Outputs out = open_outputs(o, setup);
+  const bool loop = out.publish && o.flag("loop");
   const int64_t start_utime = static_cast<int64_t>(o.get_double("start-utime"));
-
-  Outputs out;
-  if (o.has("log")) out.log = std::make_unique<LogWriter>(o.get("log"));
-  if (o.has("seq")) {
-    out.seq_dir = o.get("seq");
-    out.seq = std::make_unique<SequenceWriter>(out.seq_dir, setup.K, 0.001);
-  }
-  if (o.has("oni")) {
-#ifdef STAIRS_SIM_HAVE_ONI
-    out.oni = std::make_unique<OniWriter>(o.get("oni"), setup.K.width, setup.K.height,
-                                          static_cast<int>(std::lround(setup.trajectory.fps)));
-#else
-    throw std::runtime_error("--oni: this build has no .oni writer (target stairs_oni missing)");
-#endif
-  }
-  if (publish) {
-    out.lcm = std::make_unique<lcm::LCM>(o.get("lcm-url"));
-    if (!out.lcm->good()) throw std::runtime_error("cannot open LCM with URL '" + o.get("lcm-url") + "'");
-  }
   StatusReporter status(out.lcm.get(), "stairs-sim", o.get("status-channel"), o.flag("verbose"));
   install_stop_signals();
-
   RobotSensors sensors(o, traj, setup.seed, loop);
-  double gap_start_s = 0.0, gap_length_s = 0.0;
-  if (o.has("gap")) {
-    char colon = 0, extra = 0;
-    if (std::sscanf(o.get("gap").c_str(), "%lf%c%lf%c", &gap_start_s, &colon, &gap_length_s, &extra) != 3 ||
-        colon != ':' || !(gap_start_s >= 0) || !(gap_length_s > 0))
-      throw std::runtime_error("--gap '" + o.get("gap") + "': expected START_S:LENGTH_S, e.g. 3:5");
-  }
-  const GroundTruth stair = renderer.stair_truth();
-  GroundTruth sequence_truth = stair;
-  const bool tty = isatty(STDERR_FILENO) != 0;
-  const auto period = std::chrono::duration<double>(1.0 / setup.trajectory.fps);
-  auto next_frame = std::chrono::steady_clock::now();
+  const Gap gap = parse_gap(o);
+  FrameSender sender(o, renderer, traj, out, status);
+  Pacer pacer(setup.trajectory.fps);
+  const bool progress = out.to_files && (isatty(STDERR_FILENO) != 0 || o.flag("verbose"));
   auto last_progress = std::chrono::steady_clock::now();
   int32_t seq = 0;
-  const auto send_frame = [&](int f, double t_s, int64_t utime) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const Eigen::Isometry3d T = traj.pose(f);
-    const DepthImage img = renderer.render(T, utime, seq);
-    GroundTruthFrame truth = renderer.truth(T, t_s, img);
-    const depth_frame_t depth_msg = to_lcm(img, zlib);
-    const ground_truth_t truth_msg = to_lcm(stair, truth, utime, seq);
-    if (out.log) {
-      out.log->write_message(o.get("depth-channel"), utime, depth_msg);
-      out.log->write_message(o.get("truth-channel"), utime, truth_msg);
-    }
-    if (out.seq) {
-      out.seq->write(img, t_s);
-      sequence_truth.frames.push_back(truth);
-    }
-#ifdef STAIRS_SIM_HAVE_ONI
-    if (out.oni) out.oni->write(img);
-#endif
-    if (publish) {
-      out.lcm->publish(o.get("depth-channel"), &depth_msg);
-      out.lcm->publish(o.get("truth-channel"), &truth_msg);
-      status.published(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-      status.tick();
-    }
-  };
   for (int f = 0; !stop_requested(); ++f) {
     if (f == frames) {
       if (!loop) break;
       f = 0;
     }
     const double t_s = seq / setup.trajectory.fps;  // sequence time, continues across loops
-    const int64_t utime = publish && !to_files ? now_utime() : start_utime + std::llround(t_s * 1e6);
-    sensors.emit(traj.time_s(f), utime, out, publish);
+    const int64_t utime = out.publish && !out.to_files ? now_utime() : start_utime + std::llround(t_s * 1e6);
+    sensors.emit(traj.time_s(f), utime, out, out.publish);
     // In a gap the frame is not sent; its sequence number is skipped, so the
     // stream shows what is missing.
-    const bool in_gap = traj.time_s(f) >= gap_start_s && traj.time_s(f) < gap_start_s + gap_length_s;
-    if (!in_gap) send_frame(f, t_s, utime);
+    if (!gap.contains(traj.time_s(f))) sender.send(f, t_s, utime, seq);
     ++seq;
-    if (to_files && (tty || o.flag("verbose")) && std::chrono::steady_clock::now() - last_progress > std::chrono::seconds(1)) {
+    if (progress && std::chrono::steady_clock::now() - last_progress > std::chrono::seconds(1)) {
       last_progress = std::chrono::steady_clock::now();
       std::fprintf(stderr, "\rstairs-sim: frame %d/%d", f + 1, frames);
       std::fflush(stderr);
     }
-    if (publish && !o.flag("fast")) {
-      next_frame += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
-      const auto now = std::chrono::steady_clock::now();
-      if (next_frame > now) std::this_thread::sleep_until(next_frame);
-      else if (now - next_frame > std::chrono::seconds(1)) next_frame = now;  // fell far behind: do not burst
-      else status.dropped("behind the frame rate");
-    }
+    if (out.publish && !o.flag("fast")) pacer.wait(status);
   }
-  // Files are completed only by a whole run: an interrupted one leaves
-  // FILE.partial and a sequence directory without depth.txt.
   const bool complete = !stop_requested() || loop;
-  if (complete && out.log) out.log->close();
-  if (complete && out.seq) {
-    nlohmann::json gt = to_json(sequence_truth);
-    gt["generator"] = setup_to_json(setup);
-    gt["visible_min_pixels"] = renderer.visible_min_pixels();
-    for (size_t i = 0; i < gt["frames"].size(); ++i) gt["frames"][i]["seq"] = i;
-    write_json_file(out.seq_dir + "/groundtruth.json", gt);
-    out.seq->finish();
-  }
-#ifdef STAIRS_SIM_HAVE_ONI
-  if (out.oni) out.oni->close();
-#endif
-  if (to_files && (tty || o.flag("verbose") || !complete))
+  sender.finish(complete, setup);
+  if (progress || (out.to_files && !complete))
     std::fprintf(stderr, "\rstairs-sim: %d frames written%s\n", seq, complete ? "" : " (interrupted: files left incomplete)");
-  if (publish) status.final_report();
+  if (out.publish) status.final_report();
   return 0;
 }
 
