@@ -222,12 +222,134 @@ std::map<std::string, LatencyStats> latency_by_stage(const std::vector<FrameResu
   return out;
 }
 
+namespace {
+
+// Running sums of one run's per-frame errors (table 6.1's pose columns, the tracked camera).
+struct RunSums {
+  Accumulator pitch, roll, height, height_visible, tracked_height, tracked_position;
+  int tracked_right_step = 0, frames_since_tracked = 0;
+};
+
+std::vector<int> matched_real(const std::vector<StepMatch>& ms, size_t detected) {
+  std::vector<int> out(detected, -1);
+  for (const StepMatch& m : ms) out[static_cast<size_t>(m.detected)] = m.real;
+  return out;
+}
+
+// Table 6.1 for one frame: perception's and the tracker's steps matched to the
+// visible real steps, over all visible ones and those whose nosing is in view.
+void score_detections(const FrameResult& f, const GroundTruthFrame& gt, const std::vector<Step>& real, FrameScore& fs,
+                      Score& s) {
+  std::set<int> visible;
+  for (int v : gt.visible_steps)
+    if (v >= 0 && v < static_cast<int>(real.size())) visible.insert(v);
+  s.visible_steps += static_cast<int>(visible.size());
+  fs.visible.assign(visible.begin(), visible.end());
+  const auto matches = match_frame_steps(f.steps, real, gt);
+  fs.matched = matched_real(matches, f.steps.size());
+  const auto matched_visible = [&](const std::vector<StepMatch>& ms) {
+    return static_cast<int>(std::count_if(ms.begin(), ms.end(), [&](const StepMatch& m) { return visible.count(m.real) > 0; }));
+  };
+  s.frame_steps_matched += matched_visible(matches);
+  if (f.tracked_steps) {
+    s.tracked_scored = true;
+    const auto tracked = match_frame_steps(*f.tracked_steps, real, gt);
+    fs.tracked = matched_real(tracked, f.tracked_steps->size());
+    s.tracked_steps_matched += matched_visible(tracked);
+    s.tracked_false_steps += static_cast<int>(f.tracked_steps->size() - tracked.size());
+  }
+  if (f.K) {
+    std::set<int> with_nosing;
+    for (int v : visible)
+      if (nosing_in_view(gt, real[static_cast<size_t>(v)], *f.K)) with_nosing.insert(v);
+    s.visible_steps_nosing_in_view += static_cast<int>(with_nosing.size());
+    fs.nosing_in_view.assign(with_nosing.begin(), with_nosing.end());
+    for (const StepMatch& m : matches) s.frame_steps_matched_nosing_in_view += with_nosing.count(m.real) ? 1 : 0;
+  }
+  const int false_steps = static_cast<int>(f.steps.size() - matches.size());
+  s.frame_false_steps += false_steps;
+  s.frames_with_false_steps += false_steps > 0 ? 1 : 0;
+}
+
+// The tracker's camera against the truth: height, step beneath (as a real
+// index through this frame's tracked-step matches) and position along the
+// stair; coverage counts the frames since the tracker first gave a camera.
+void score_tracked_camera(const FrameResult& f, const GroundTruthFrame& gt, const std::vector<Step>& real,
+                          FrameScore& fs, Score& s, RunSums& sums) {
+  if (!f.tracked_camera || !(f.tracked_camera->valid || sums.frames_since_tracked > 0)) return;
+  ++sums.frames_since_tracked;
+  const TrackedCamera& tc = *f.tracked_camera;
+  if (!tc.valid) return;
+  ++s.tracked_camera_frames;
+  if (tc.height_m) sums.tracked_height.add(100.0 * (*tc.height_m - gt.height_m));
+  const auto offset = fs.tracked ? frame_model_offset(*fs.tracked) : std::nullopt;
+  if (tc.step_index) {
+    ++s.tracked_beneath_frames;
+    if (offset) fs.tracked_step_index = *tc.step_index + *offset;
+    sums.tracked_right_step += fs.tracked_step_index == fs.true_step_index ? 1 : 0;
+  }
+  if (offset) {
+    fs.tracked_position_error_cm = 100.0 * (tc.position_m.x() + riser_foot(real, *offset).x() - gt.position_m.x());
+    sums.tracked_position.add(*fs.tracked_position_error_cm);
+  }
+}
+
+// Perception's camera pose against the truth.
+void score_pose(const FrameResult& f, const GroundTruthFrame& gt, const std::vector<Step>& real, Score& s,
+                RunSums& sums) {
+  if (!f.camera.valid) return;
+  ++s.pose_frames_valid;
+  sums.pitch.add(f.camera.pitch_deg - gt.pitch_deg);
+  sums.roll.add(f.camera.roll_deg - gt.roll_deg);
+  if (!f.camera.height_m) return;
+  sums.height.add(100.0 * (*f.camera.height_m - gt.height_m));
+  if (f.K && beneath_in_view(gt, real, *f.K)) sums.height_visible.add(100.0 * (*f.camera.height_m - gt.height_m));
+}
+
+// Tables 6.2-6.4: the final model's steps matched to the real ones.
+void score_model(const std::vector<Flight>& model, const std::vector<Step>& real, Score& s) {
+  s.model_scored = true;
+  std::vector<Step> model_steps;
+  for (const Flight& f : model) model_steps.insert(model_steps.end(), f.steps.begin(), f.steps.end());
+  const ModelMatch mm = match_model_steps(model_steps, real);
+  s.model_steps_real = static_cast<int>(real.size());
+  s.model_steps_detected = static_cast<int>(mm.matches.size());
+  s.model_false_steps = static_cast<int>(model_steps.size() - mm.matches.size());
+  s.model_step_offset = mm.offset_steps;
+  Accumulator riser, tread;
+  for (const StepMatch& m : mm.matches) {
+    const Step& est = model_steps[m.detected];
+    const Step& gt = real[m.real];
+    if (est.riser_height_m && gt.riser_height_m) riser.add(100.0 * (*est.riser_height_m - *gt.riser_height_m));
+    if (!gt.landing && est.tread_depth_m && gt.tread_depth_m) tread.add(100.0 * (*est.tread_depth_m - *gt.tread_depth_m));
+  }
+  s.riser_error_cm = riser.stats();
+  s.tread_error_cm = tread.stats();
+}
+
+void finish_rates(const RunSums& sums, Score& s) {
+  if (s.visible_steps > 0) s.frame_step_detection = double(s.frame_steps_matched) / s.visible_steps;
+  if (s.visible_steps > 0 && s.tracked_scored)
+    s.frame_step_detection_tracked = double(s.tracked_steps_matched) / s.visible_steps;
+  if (s.visible_steps_nosing_in_view > 0)
+    s.frame_step_detection_nosing_in_view = double(s.frame_steps_matched_nosing_in_view) / s.visible_steps_nosing_in_view;
+  s.pitch_error_deg = sums.pitch.stats();
+  s.roll_error_deg = sums.roll.stats();
+  s.height_error_cm = sums.height.stats();
+  s.height_error_beneath_visible_cm = sums.height_visible.stats();
+  s.tracked_height_error_cm = sums.tracked_height.stats();
+  s.tracked_position_error_cm = sums.tracked_position.stats();
+  if (sums.frames_since_tracked > 0) s.tracked_camera_coverage = double(s.tracked_camera_frames) / sums.frames_since_tracked;
+  if (s.tracked_beneath_frames > 0) s.tracked_step_index_accuracy = double(sums.tracked_right_step) / s.tracked_beneath_frames;
+}
+
+}  // namespace
+
 Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight>* model,
                 const GroundTruth& truth) {
   Score s;
   const std::vector<Step> real = real_steps(truth);
-  Accumulator pitch, roll, height, height_visible, tracked_height, tracked_position;
-  int tracked_right_step = 0, frames_since_tracked = 0;
+  RunSums sums;
   for (const FrameResult& f : frames) {
     s.frames.emplace_back();
     if (!f.truth) continue;
@@ -238,104 +360,12 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
     fs.roll_deg = gt.roll_deg;
     fs.height_m = gt.height_m;
     fs.true_step_index = true_step_beneath(gt, real);
-    const auto matched_real = [](const std::vector<StepMatch>& ms, size_t detected) {
-      std::vector<int> out(detected, -1);
-      for (const StepMatch& m : ms) out[static_cast<size_t>(m.detected)] = m.real;
-      return out;
-    };
-    std::set<int> visible;
-    for (int v : gt.visible_steps)
-      if (v >= 0 && v < static_cast<int>(real.size())) visible.insert(v);
-    s.visible_steps += static_cast<int>(visible.size());
-    fs.visible.assign(visible.begin(), visible.end());
-    const auto matches = match_frame_steps(f.steps, real, gt);
-    fs.matched = matched_real(matches, f.steps.size());
-    const auto matched_visible = [&](const std::vector<StepMatch>& ms) {
-      return static_cast<int>(std::count_if(ms.begin(), ms.end(), [&](const StepMatch& m) { return visible.count(m.real) > 0; }));
-    };
-    s.frame_steps_matched += matched_visible(matches);
-    if (f.tracked_steps) {
-      s.tracked_scored = true;
-      const auto tracked = match_frame_steps(*f.tracked_steps, real, gt);
-      fs.tracked = matched_real(tracked, f.tracked_steps->size());
-      s.tracked_steps_matched += matched_visible(tracked);
-      s.tracked_false_steps += static_cast<int>(f.tracked_steps->size() - tracked.size());
-    }
-    if (f.tracked_camera && (f.tracked_camera->valid || frames_since_tracked > 0)) {
-      ++frames_since_tracked;
-      const TrackedCamera& tc = *f.tracked_camera;
-      if (tc.valid) {
-        ++s.tracked_camera_frames;
-        if (tc.height_m) tracked_height.add(100.0 * (*tc.height_m - gt.height_m));
-        const auto offset = fs.tracked ? frame_model_offset(*fs.tracked) : std::nullopt;
-        if (tc.step_index) {
-          ++s.tracked_beneath_frames;
-          if (offset) fs.tracked_step_index = *tc.step_index + *offset;
-          tracked_right_step += fs.tracked_step_index == fs.true_step_index ? 1 : 0;
-        }
-        if (offset) {
-          fs.tracked_position_error_cm = 100.0 * (tc.position_m.x() + riser_foot(real, *offset).x() - gt.position_m.x());
-          tracked_position.add(*fs.tracked_position_error_cm);
-        }
-      }
-    }
-    if (f.K) {
-      std::set<int> with_nosing;
-      for (int v : visible)
-        if (nosing_in_view(gt, real[static_cast<size_t>(v)], *f.K)) with_nosing.insert(v);
-      s.visible_steps_nosing_in_view += static_cast<int>(with_nosing.size());
-      fs.nosing_in_view.assign(with_nosing.begin(), with_nosing.end());
-      for (const StepMatch& m : matches) s.frame_steps_matched_nosing_in_view += with_nosing.count(m.real) ? 1 : 0;
-    }
-    const int false_steps = static_cast<int>(f.steps.size() - matches.size());
-    s.frame_false_steps += false_steps;
-    s.frames_with_false_steps += false_steps > 0 ? 1 : 0;
-    if (f.camera.valid) {
-      ++s.pose_frames_valid;
-      pitch.add(f.camera.pitch_deg - gt.pitch_deg);
-      roll.add(f.camera.roll_deg - gt.roll_deg);
-      if (f.camera.height_m) {
-        height.add(100.0 * (*f.camera.height_m - gt.height_m));
-        if (f.K && beneath_in_view(gt, real, *f.K)) height_visible.add(100.0 * (*f.camera.height_m - gt.height_m));
-      }
-    }
+    score_detections(f, gt, real, fs, s);
+    score_tracked_camera(f, gt, real, fs, s, sums);
+    score_pose(f, gt, real, s, sums);
   }
-  if (s.visible_steps > 0) s.frame_step_detection = double(s.frame_steps_matched) / s.visible_steps;
-  if (s.visible_steps > 0 && s.tracked_scored)
-    s.frame_step_detection_tracked = double(s.tracked_steps_matched) / s.visible_steps;
-  if (s.visible_steps_nosing_in_view > 0)
-    s.frame_step_detection_nosing_in_view =
-        double(s.frame_steps_matched_nosing_in_view) / s.visible_steps_nosing_in_view;
-  s.pitch_error_deg = pitch.stats();
-  s.roll_error_deg = roll.stats();
-  s.height_error_cm = height.stats();
-  s.height_error_beneath_visible_cm = height_visible.stats();
-  s.tracked_height_error_cm = tracked_height.stats();
-  s.tracked_position_error_cm = tracked_position.stats();
-  if (frames_since_tracked > 0) s.tracked_camera_coverage = double(s.tracked_camera_frames) / frames_since_tracked;
-  if (s.tracked_beneath_frames > 0)
-    s.tracked_step_index_accuracy = double(tracked_right_step) / s.tracked_beneath_frames;
-
-  if (model) {
-    s.model_scored = true;
-    std::vector<Step> model_steps;
-    for (const Flight& f : *model) model_steps.insert(model_steps.end(), f.steps.begin(), f.steps.end());
-    const ModelMatch mm = match_model_steps(model_steps, real);
-    s.model_steps_real = static_cast<int>(real.size());
-    s.model_steps_detected = static_cast<int>(mm.matches.size());
-    s.model_false_steps = static_cast<int>(model_steps.size() - mm.matches.size());
-    s.model_step_offset = mm.offset_steps;
-    Accumulator riser, tread;
-    for (const StepMatch& m : mm.matches) {
-      const Step& est = model_steps[m.detected];
-      const Step& gt = real[m.real];
-      if (est.riser_height_m && gt.riser_height_m) riser.add(100.0 * (*est.riser_height_m - *gt.riser_height_m));
-      if (!gt.landing && est.tread_depth_m && gt.tread_depth_m)
-        tread.add(100.0 * (*est.tread_depth_m - *gt.tread_depth_m));
-    }
-    s.riser_error_cm = riser.stats();
-    s.tread_error_cm = tread.stats();
-  }
+  finish_rates(sums, s);
+  if (model) score_model(*model, real, s);
   s.latency_ms = latency_by_stage(frames);
   return s;
 }
