@@ -108,75 +108,78 @@ bool pick_mode(const openni::SensorInfo* info, int width, int height, int fps, o
 }
 }  // namespace
 
-bool OpenNICamera::open(std::string& error) {
-  close();
-  auto dev = std::make_unique<openni::Device>();
-  const bool file = !config_.oni_file.empty();
-  std::string uri = file ? config_.oni_file : config_.uri;
-  if (!file && uri.empty()) {
-    openni::Array<openni::DeviceInfo> list;
-    openni::OpenNI::enumerateDevices(&list);
-    if (list.getSize() == 0) {
-      error = "no OpenNI2 device found: tried the first device, OpenNI2 enumerated none (camera unplugged, no power, "
-              "udev permissions, or no driver for it in the OpenNI2 Drivers directory)";
-      return false;
-    }
-    uri = list[0].getUri();
-  }
-  const std::string what = file ? "recording " + uri : "device " + uri;
-  if (watch_->run("Device::open(" + uri + ")", [&] { return dev->open(uri.c_str()); }) != openni::STATUS_OK) {
-    error = "cannot open " + what + ": " + oni_error();
+// The device to open: the recording, the given URI, or the first device.
+bool OpenNICamera::resolve_uri(std::string& uri, std::string& error) const {
+  uri = config_.oni_file.empty() ? config_.uri : config_.oni_file;
+  if (!uri.empty()) return true;
+  openni::Array<openni::DeviceInfo> list;
+  openni::OpenNI::enumerateDevices(&list);
+  if (list.getSize() == 0) {
+    error = "no OpenNI2 device found: tried the first device, OpenNI2 enumerated none (camera unplugged, no power, "
+            "udev permissions, or no driver for it in the OpenNI2 Drivers directory)";
     return false;
   }
-  if (file) {
-    openni::PlaybackControl* pb = dev->getPlaybackControl();
-    // With repeat off, OpenNI2's player thread spins over its stream list,
-    // unlocked, once past the end, and destroying the stream races with it (a
-    // crash in libOniFile seen here). So repeat is on whenever it costs
-    // nothing: manual playback (--fast) waits for each read, and read() ends
-    // the recording where the frame index wraps. At the recorded speed the
-    // rewound first frame would replace the last one, so there repeat
-    // follows --loop, and close() waits for the player to idle instead.
-    if (!pb || pb->setSpeed(config_.fast ? -1.0f : 1.0f) != openni::STATUS_OK ||
-        pb->setRepeatEnabled(config_.loop || config_.fast) != openni::STATUS_OK) {
-      error = "cannot control playback of " + what + ": " + oni_error();
-      return false;
-    }
+  uri = list[0].getUri();
+  return true;
+}
+
+// A recording's playback: speed and repeat.
+bool OpenNICamera::configure_playback(openni::Device& dev, const std::string& what, std::string& error) const {
+  openni::PlaybackControl* pb = dev.getPlaybackControl();
+  // With repeat off, OpenNI2's player thread spins over its stream list,
+  // unlocked, once past the end, and destroying the stream races with it (a
+  // crash in libOniFile seen here). So repeat is on whenever it costs
+  // nothing: manual playback (--fast) waits for each read, and read() ends
+  // the recording where the frame index wraps. At the recorded speed the
+  // rewound first frame would replace the last one, so there repeat follows
+  // --loop, and close() waits for the player to idle instead.
+  if (!pb || pb->setSpeed(config_.fast ? -1.0f : 1.0f) != openni::STATUS_OK ||
+      pb->setRepeatEnabled(config_.loop || config_.fast) != openni::STATUS_OK) {
+    error = "cannot control playback of " + what + ": " + oni_error();
+    return false;
   }
-  if (!dev->hasSensor(openni::SENSOR_DEPTH) ||
-      watch_->run("VideoStream::create(depth)", [&] { return depth_.create(*dev, openni::SENSOR_DEPTH); }) !=
+  return true;
+}
+
+// The depth stream, in the configured mode on a device (a recording has its own).
+bool OpenNICamera::create_depth(openni::Device& dev, bool file, const std::string& what, std::string& error) {
+  if (!dev.hasSensor(openni::SENSOR_DEPTH) ||
+      watch_->run("VideoStream::create(depth)", [&] { return depth_.create(dev, openni::SENSOR_DEPTH); }) !=
           openni::STATUS_OK) {
     error = what + " has no depth stream: " + oni_error();
     return false;
   }
-  if (!file) {
-    openni::VideoMode mode;
-    if (!pick_mode(dev->getSensorInfo(openni::SENSOR_DEPTH), config_.width, config_.height, config_.fps,
-                   openni::PIXEL_FORMAT_DEPTH_1_MM, mode)) {
-      error = what + " has no " + std::to_string(config_.width) + "x" + std::to_string(config_.height) +
-              " depth mode in mm";
-      depth_.destroy();
-      return false;
-    }
-    if (depth_.setVideoMode(mode) != openni::STATUS_OK) {
-      error = "cannot set the depth mode of " + what + ": " + oni_error();
-      depth_.destroy();
-      return false;
-    }
-    depth_.setMirroringEnabled(false);  // unsupported on some devices: their images are not mirrored
+  if (file) return true;
+  openni::VideoMode mode;
+  if (!pick_mode(dev.getSensorInfo(openni::SENSOR_DEPTH), config_.width, config_.height, config_.fps,
+                 openni::PIXEL_FORMAT_DEPTH_1_MM, mode)) {
+    error = what + " has no " + std::to_string(config_.width) + "x" + std::to_string(config_.height) + " depth mode in mm";
+    depth_.destroy();
+    return false;
   }
-  if (config_.color && dev->hasSensor(openni::SENSOR_COLOR) &&
-      watch_->run("VideoStream::create(colour)", [&] { return color_.create(*dev, openni::SENSOR_COLOR); }) ==
+  if (depth_.setVideoMode(mode) != openni::STATUS_OK) {
+    error = "cannot set the depth mode of " + what + ": " + oni_error();
+    depth_.destroy();
+    return false;
+  }
+  depth_.setMirroringEnabled(false);  // unsupported on some devices: their images are not mirrored
+  return true;
+}
+
+// The optional colour stream, registered to depth; without one, depth only (said once).
+void OpenNICamera::start_color(openni::Device& dev, bool file, const std::string& what) {
+  if (config_.color && dev.hasSensor(openni::SENSOR_COLOR) &&
+      watch_->run("VideoStream::create(colour)", [&] { return color_.create(dev, openni::SENSOR_COLOR); }) ==
           openni::STATUS_OK) {
     if (!file) {
       openni::VideoMode mode;
-      if (pick_mode(dev->getSensorInfo(openni::SENSOR_COLOR), config_.width, config_.height, config_.fps,
+      if (pick_mode(dev.getSensorInfo(openni::SENSOR_COLOR), config_.width, config_.height, config_.fps,
                     openni::PIXEL_FORMAT_RGB888, mode))
         color_.setVideoMode(mode);
       color_.setMirroringEnabled(false);
-      if (dev->isImageRegistrationModeSupported(openni::IMAGE_REGISTRATION_DEPTH_TO_COLOR))
-        dev->setImageRegistrationMode(openni::IMAGE_REGISTRATION_DEPTH_TO_COLOR);
-      dev->setDepthColorSyncEnabled(true);
+      if (dev.isImageRegistrationModeSupported(openni::IMAGE_REGISTRATION_DEPTH_TO_COLOR))
+        dev.setImageRegistrationMode(openni::IMAGE_REGISTRATION_DEPTH_TO_COLOR);
+      dev.setDepthColorSyncEnabled(true);
     }
     color_on_ = watch_->run("VideoStream::start(colour)", [&] { return color_.start(); }) == openni::STATUS_OK &&
                 color_.getVideoMode().getPixelFormat() == openni::PIXEL_FORMAT_RGB888;
@@ -184,6 +187,22 @@ bool OpenNICamera::open(std::string& error) {
   if (config_.color && !color_on_)
     std::fprintf(stderr, "stairs-openni2: %s has no usable RGB888 colour stream; publishing depth only\n",
                  what.c_str());
+}
+
+bool OpenNICamera::open(std::string& error) {
+  close();
+  auto dev = std::make_unique<openni::Device>();
+  const bool file = !config_.oni_file.empty();
+  std::string uri;
+  if (!resolve_uri(uri, error)) return false;
+  const std::string what = file ? "recording " + uri : "device " + uri;
+  if (watch_->run("Device::open(" + uri + ")", [&] { return dev->open(uri.c_str()); }) != openni::STATUS_OK) {
+    error = "cannot open " + what + ": " + oni_error();
+    return false;
+  }
+  if (file && !configure_playback(*dev, what, error)) return false;
+  if (!create_depth(*dev, file, what, error)) return false;
+  start_color(*dev, file, what);
   if (watch_->run("VideoStream::start(depth)", [&] { return depth_.start(); }) != openni::STATUS_OK) {
     error = "cannot start the depth stream of " + what + ": " + oni_error();
     depth_.destroy();

@@ -49,6 +49,11 @@ class OpenNICamera {
   int recording_frames() const { return recording_frames_; }
 
  private:
+  bool resolve_uri(std::string& uri, std::string& error) const;
+  bool configure_playback(openni::Device& dev, const std::string& what, std::string& error) const;
+  bool create_depth(openni::Device& dev, bool file, const std::string& what, std::string& error);
+  void start_color(openni::Device& dev, bool file, const std::string& what);
+
   CameraConfig config_;
   std::unique_ptr<BlockingCallWatch> watch_;
   std::unique_ptr<openni::Device> device_;
