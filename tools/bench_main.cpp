@@ -36,6 +36,32 @@ const char* kHeader =
     "| false steps (frames / model) | pitch / roll err deg | height err cm (surface beneath in view) |\n"
     "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
+// One markdown row: input, latencies (ours, PCL's), their ratio, the scores.
+void print_row(const std::string& name, int width, int height, const stairs::eval::RunResult& result,
+               const stairs::eval::LatencyStats& peer, const stairs::eval::LatencyStats& ours) {
+  const auto stages = stairs::eval::latency_by_stage(result.frames);
+  std::cout << "| " << name << " | " << width << "x" << height << " | " << result.frames_processed << " | "
+            << ms_pair(stages.at("perception")) << " | " << ms_pair(stages.at("tracker")) << " | " << ms_pair(peer)
+            << " | "
+            << opt(peer.median_ms > 0 ? std::optional<double>(ours.median_ms / peer.median_ms) : std::nullopt, "%.2f")
+            << " | ";
+  if (!result.score) {
+    std::cout << "n/a | n/a | n/a | n/a | n/a | n/a | n/a |\n";
+    return;
+  }
+  const stairs::eval::Score& s = *result.score;
+  auto percent = [](const std::optional<double>& v) {
+    return opt(v ? std::optional<double>(100 * *v) : std::nullopt, "%.1f %%");
+  };
+  std::cout << percent(s.frame_step_detection) << " / " << percent(s.frame_step_detection_nosing_in_view) << " / "
+            << percent(s.frame_step_detection_tracked) << " | " << s.model_steps_detected << "/" << s.model_steps_real
+            << " | " << opt(s.riser_error_cm.mean_signed, "%+.2f") << " / " << opt(s.riser_error_cm.mean_abs, "%.2f")
+            << " | " << opt(s.tread_error_cm.mean_signed, "%+.2f") << " / " << opt(s.tread_error_cm.mean_abs, "%.2f")
+            << " | " << s.frame_false_steps << " / " << s.model_false_steps << " | "
+            << opt(s.pitch_error_deg.mean_abs, "%.2f") << " / " << opt(s.roll_error_deg.mean_abs, "%.2f") << " | "
+            << opt(s.height_error_beneath_visible_cm.mean_abs, "%.2f") << " |\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -87,36 +113,10 @@ int main(int argc, char** argv) {
         if (l.name == "perception" || l.name == "tracker") total += l.ms;
       ours_ms.push_back(total);
     }
-    const auto stages = stairs::eval::latency_by_stage(result.frames);
-    const auto peer_stats = stairs::eval::latency_stats(peer_ms);
-    const auto ours_stats = stairs::eval::latency_stats(ours_ms);
-    const auto& s = result.score;
     std::filesystem::path path(input);
     if (path.filename().empty()) path = path.parent_path();  // "dir/"
-    const std::string name = path.stem().string();
-    std::cout << "| " << name << " | " << width << "x" << height << " | " << result.frames_processed << " | "
-              << ms_pair(stages.at("perception")) << " | " << ms_pair(stages.at("tracker")) << " | "
-              << ms_pair(peer_stats) << " | "
-              << opt(peer_stats.median_ms > 0 ? std::optional<double>(ours_stats.median_ms / peer_stats.median_ms)
-                                              : std::nullopt,
-                     "%.2f")
-              << " | ";
-    if (s) {
-      auto percent = [](const std::optional<double>& v) {
-        return opt(v ? std::optional<double>(100 * *v) : std::nullopt, "%.1f %%");
-      };
-      std::cout << percent(s->frame_step_detection) << " / " << percent(s->frame_step_detection_nosing_in_view)
-                << " / " << percent(s->frame_step_detection_tracked)
-                << " | " << s->model_steps_detected << "/" << s->model_steps_real << " | "
-                << opt(s->riser_error_cm.mean_signed, "%+.2f") << " / " << opt(s->riser_error_cm.mean_abs, "%.2f")
-                << " | " << opt(s->tread_error_cm.mean_signed, "%+.2f") << " / "
-                << opt(s->tread_error_cm.mean_abs, "%.2f") << " | " << s->frame_false_steps << " / "
-                << s->model_false_steps << " | " << opt(s->pitch_error_deg.mean_abs, "%.2f") << " / "
-                << opt(s->roll_error_deg.mean_abs, "%.2f") << " | " << opt(s->height_error_beneath_visible_cm.mean_abs, "%.2f")
-                << " |\n";
-    } else {
-      std::cout << "n/a | n/a | n/a | n/a | n/a | n/a | n/a |\n";
-    }
+    print_row(path.stem().string(), width, height, result, stairs::eval::latency_stats(peer_ms),
+              stairs::eval::latency_stats(ours_ms));
   } catch (const std::exception& e) {
     std::cerr << "stairs-bench: " << e.what() << "\n";
     return 1;

@@ -326,6 +326,59 @@ Cylinder handrail(const Scene& s, int flight, int side, double height_m) {
   return c;
 }
 
+// "flights": each either explicit per-step lists or a uniform flight.
+void flights_from_json(const json& j, const std::string& what, Scene& s) {
+  if (auto it = j.find("flights"); it != j.end()) {
+    if (!it->is_array()) fail(what, "'flights' must be an array");
+    s.flights.clear();
+    for (size_t f = 0; f < it->size(); ++f) {
+      const json& jf = (*it)[f];
+      const std::string w = what + ": flights[" + std::to_string(f) + "]";
+      if (jf.contains("risers_m") || jf.contains("treads_m")) {
+        FlightSpec fl{number_list(jf, "risers_m", w), number_list(jf, "treads_m", w)};
+        if (fl.riser_m.size() != fl.tread_m.size() || fl.riser_m.empty())
+          fail(w, "'risers_m' and 'treads_m' must have the same non-zero length");
+        s.flights.push_back(fl);
+      } else {
+        const double steps = num(jf, "steps", w, 10);
+        if (steps < 1 || steps > 100 || steps != std::floor(steps)) fail(w, "'steps' must be an integer 1..100");
+        s.flights.push_back(uniform_flight(static_cast<int>(steps), positive(jf, "riser_m", w, 0.18),
+                                           positive(jf, "tread_m", w, 0.25), positive(jf, "landing_m", w, 1.5)));
+      }
+    }
+  }
+}
+
+// "boxes", "cylinders" and "handrails" (furniture, posts, rails; handrails follow a flight).
+void obstacles_from_json(const json& j, const std::string& what, Scene& s) {
+  if (auto it = j.find("boxes"); it != j.end()) {
+    for (const json& b : *it) {
+      Box box{vec3(b, "min_m", what + ": boxes"), vec3(b, "max_m", what + ": boxes")};
+      if ((box.max_m - box.min_m).minCoeff() <= 0.0) fail(what, "boxes: max_m must exceed min_m");
+      s.boxes.push_back(box);
+    }
+  }
+  if (auto it = j.find("cylinders"); it != j.end()) {
+    for (const json& c : *it) {
+      Cylinder cyl{vec3(c, "base_m", what + ": cylinders"), vec3(c, "axis", what + ": cylinders"),
+                   positive(c, "length_m", what + ": cylinders", 1.0),
+                   positive(c, "radius_m", what + ": cylinders", 0.05)};
+      if (cyl.axis.norm() < 1e-9) fail(what, "cylinders: 'axis' must not be zero");
+      cyl.axis.normalize();
+      s.cylinders.push_back(cyl);
+    }
+  }
+  if (auto it = j.find("handrails"); it != j.end()) {
+    for (const json& h : *it) {
+      const std::string side = h.contains("side") ? text(h, "side", what + ": handrails") : "left";
+      if (side != "left" && side != "right") fail(what, "handrails: 'side' must be left or right");
+      const int flight = static_cast<int>(num(h, "flight", what, 0));
+      if (flight < 0 || flight >= static_cast<int>(s.flights.size())) fail(what, "handrails: 'flight' out of range");
+      s.cylinders.push_back(handrail(s, flight, side == "left" ? 1 : -1, positive(h, "height_m", what, 0.9)));
+    }
+  }
+}
+
 Scene scene_from_json(const json& j, const std::string& what) {
   if (!j.is_object()) fail(what, "not a JSON object");
   Scene s;
@@ -370,51 +423,8 @@ Scene scene_from_json(const json& j, const std::string& what) {
     if (!j["back_wall"].is_boolean()) fail(what, "'back_wall' is not true/false");
     s.back_wall = j["back_wall"].get<bool>();
   }
-  if (auto it = j.find("flights"); it != j.end()) {
-    if (!it->is_array()) fail(what, "'flights' must be an array");
-    s.flights.clear();
-    for (size_t f = 0; f < it->size(); ++f) {
-      const json& jf = (*it)[f];
-      const std::string w = what + ": flights[" + std::to_string(f) + "]";
-      if (jf.contains("risers_m") || jf.contains("treads_m")) {
-        FlightSpec fl{number_list(jf, "risers_m", w), number_list(jf, "treads_m", w)};
-        if (fl.riser_m.size() != fl.tread_m.size() || fl.riser_m.empty())
-          fail(w, "'risers_m' and 'treads_m' must have the same non-zero length");
-        s.flights.push_back(fl);
-      } else {
-        const double steps = num(jf, "steps", w, 10);
-        if (steps < 1 || steps > 100 || steps != std::floor(steps)) fail(w, "'steps' must be an integer 1..100");
-        s.flights.push_back(uniform_flight(static_cast<int>(steps), positive(jf, "riser_m", w, 0.18),
-                                           positive(jf, "tread_m", w, 0.25), positive(jf, "landing_m", w, 1.5)));
-      }
-    }
-  }
-  if (auto it = j.find("boxes"); it != j.end()) {
-    for (const json& b : *it) {
-      Box box{vec3(b, "min_m", what + ": boxes"), vec3(b, "max_m", what + ": boxes")};
-      if ((box.max_m - box.min_m).minCoeff() <= 0.0) fail(what, "boxes: max_m must exceed min_m");
-      s.boxes.push_back(box);
-    }
-  }
-  if (auto it = j.find("cylinders"); it != j.end()) {
-    for (const json& c : *it) {
-      Cylinder cyl{vec3(c, "base_m", what + ": cylinders"), vec3(c, "axis", what + ": cylinders"),
-                   positive(c, "length_m", what + ": cylinders", 1.0),
-                   positive(c, "radius_m", what + ": cylinders", 0.05)};
-      if (cyl.axis.norm() < 1e-9) fail(what, "cylinders: 'axis' must not be zero");
-      cyl.axis.normalize();
-      s.cylinders.push_back(cyl);
-    }
-  }
-  if (auto it = j.find("handrails"); it != j.end()) {
-    for (const json& h : *it) {
-      const std::string side = h.contains("side") ? text(h, "side", what + ": handrails") : "left";
-      if (side != "left" && side != "right") fail(what, "handrails: 'side' must be left or right");
-      const int flight = static_cast<int>(num(h, "flight", what, 0));
-      if (flight < 0 || flight >= static_cast<int>(s.flights.size())) fail(what, "handrails: 'flight' out of range");
-      s.cylinders.push_back(handrail(s, flight, side == "left" ? 1 : -1, positive(h, "height_m", what, 0.9)));
-    }
-  }
+  flights_from_json(j, what, s);
+  obstacles_from_json(j, what, s);
   if (s.kind == SceneKind::Stairs && s.flights.empty()) fail(what, "a stairs scene needs 'flights'");
   return s;
 }
