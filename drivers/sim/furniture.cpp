@@ -66,8 +66,9 @@ Scene room(const std::string& name, double depth_m) {
 
 using Make = std::function<Scene(Sizes&)>;
 
-const std::map<std::string, Make>& families() {
-  static const std::map<std::string, Make> m = {
+// The table in two halves, each a function a reader can hold in their head.
+void add_families_first(std::map<std::string, Make>& m) {
+  m.insert({
       {"kitchen_table",  // table with chairs on every side, pulled out by different amounts
        [](Sizes& r) {
          const double d = r(0.7, 0.95), w = r(0.9, 1.6), h = r(0.70, 0.78), seat = r(0.38, 0.46), sh = r(0.42, 0.48);
@@ -132,7 +133,11 @@ const std::map<std::string, Make>& families() {
          s.cylinders.push_back({{cx, cy, 0.05}, Eigen::Vector3d::UnitZ(), sh - 0.11, 0.03});
          b.box(cx - 0.3, cy - 0.3, 0.0, cx + 0.3, cy + 0.3, 0.05);  // base
          return s;
-       }},
+       }}});
+}
+
+void add_families_second(std::map<std::string, Make>& m) {
+  m.insert({
       {"bookshelf",  // open shelves: boards every 0.3-0.4 m between two sides
        [](Sizes& r) {
          const double w = r(0.6, 1.0), d = r(0.25, 0.4), gap = r(0.28, 0.4), h = r(1.6, 2.0);
@@ -196,8 +201,16 @@ const std::map<std::string, Make>& families() {
          b.box(kNear_m, -0.5 * w, 0.0, kNear_m + d, 0.5 * w, h);
          b.box(kNear_m + 0.5 * d, -0.4 * w, h, kNear_m + 0.5 * d + 0.06, 0.4 * w, h + r(0.5, 0.7));
          return s;
-       }},
-  };
+       }}});
+}
+
+const std::map<std::string, Make>& families() {
+  static const std::map<std::string, Make> m = [] {
+    std::map<std::string, Make> t;
+    add_families_first(t);
+    add_families_second(t);
+    return t;
+  }();
   return m;
 }
 

@@ -89,8 +89,9 @@ struct Preset {
 };
 
 // Standard German house stair (thesis section 1): 18 cm risers, 25 cm treads.
-const std::map<std::string, Preset>& presets() {
-  static const std::map<std::string, Preset> m = {
+// The table in two halves, each a function a reader can hold in their head.
+void add_presets_first(std::map<std::string, Preset>& m) {
+  m.insert({
       {"straight_up",
        {"10 steps 0.18/0.25 m, width 1.2 m, walls both sides, 1.5 m top landing with back wall",
         [] { return stair("straight_up", {uniform_flight(10, 0.18, 0.25, 1.5)}); }}},
@@ -132,7 +133,11 @@ const std::map<std::string, Preset>& presets() {
           Scene s = stair("nosing", {uniform_flight(10, 0.17, 0.28, 3.0)});
           s.nosing_m = 0.03;
           return s;
-        }}},
+        }}}});
+}
+
+void add_presets_second(std::map<std::string, Preset>& m) {
+  m.insert({
       {"open_sides",
        {"10 steps 0.18/0.25 m, width 1.0 m, no side walls (room 4 m wide), 3 m landing",
         [] {
@@ -194,8 +199,16 @@ const std::map<std::string, Preset>& presets() {
           s.room_width_m = 6.0;
           s.back_wall = false;
           return s;
-        }}},
-  };
+        }}}});
+}
+
+const std::map<std::string, Preset>& presets() {
+  static const std::map<std::string, Preset> m = [] {
+    std::map<std::string, Preset> t;
+    add_presets_first(t);
+    add_presets_second(t);
+    return t;
+  }();
   return m;
 }
 
