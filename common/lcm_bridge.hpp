@@ -25,6 +25,11 @@ namespace stairs {
 template <class T>
 bool decode_message(const void* data, size_t size, T& msg, std::string& error);
 
+// decode_message, then from_lcm: the message and its checked core value, or
+// false with the reason (what every receiver does with a buffer).
+template <class Msg, class Value>
+bool decode_and_convert(const void* data, size_t size, Msg& msg, Value& value, std::string& error);
+
 // Largest encoded size accepted for a type, bytes.
 template <class T>
 size_t max_message_bytes();
@@ -67,5 +72,10 @@ step_t to_lcm(const Step& s);
 Step from_lcm(const step_t& s);
 plane_t to_lcm(const Plane& p);
 Plane from_lcm(const plane_t& p);
+
+template <class Msg, class Value>
+bool decode_and_convert(const void* data, size_t size, Msg& msg, Value& value, std::string& error) {
+  return decode_message(data, size, msg, error) && from_lcm(msg, value, error);
+}
 
 }  // namespace stairs

@@ -57,7 +57,7 @@ Answers read_answers(const std::string& path, const RecordedOptions& o, Recorded
     if (ev.channel == o.observation_channel) {
       stair_observation_t msg;
       Observation obs;
-      if (!decode_message(ev.data.data(), ev.data.size(), msg, error) || !from_lcm(msg, obs, error)) {
+      if (!decode_and_convert(ev.data.data(), ev.data.size(), msg, obs, error)) {
         ++counts.rejected_messages;
         continue;
       }
@@ -66,7 +66,7 @@ Answers read_answers(const std::string& path, const RecordedOptions& o, Recorded
     } else if (ev.channel == o.model_channel) {
       stair_model_t msg;
       StairModel model;
-      if (!decode_message(ev.data.data(), ev.data.size(), msg, error) || !from_lcm(msg, model, error)) {
+      if (!decode_and_convert(ev.data.data(), ev.data.size(), msg, model, error)) {
         ++counts.rejected_messages;
         continue;
       }

@@ -33,17 +33,14 @@ struct Models {
     stair_model_t msg;
     StairModel m;
     std::string error;
-    if (!decode_message(rbuf->data, rbuf->data_size, msg, error) || !from_lcm(msg, m, error)) {
-      ++bad;
-      return;
-    }
-    steps_only[msg.source_seq] = {m, static_cast<int>(rbuf->data_size)};
+    if (!decode_and_convert(rbuf->data, rbuf->data_size, msg, m, error)) ++bad;
+    else steps_only[msg.source_seq] = {m, static_cast<int>(rbuf->data_size)};
   }
   void on_model(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     stair_model_t msg;
     StairModel m;
     std::string error;
-    if (!decode_message(rbuf->data, rbuf->data_size, msg, error) || !from_lcm(msg, m, error)) {
+    if (!decode_and_convert(rbuf->data, rbuf->data_size, msg, m, error)) {
       ++bad;
       return;
     }
