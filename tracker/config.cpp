@@ -13,14 +13,18 @@ void validate(const TrackerConfig& c) {
   const auto require = [](bool ok, const char* key, const char* what) {
     if (!ok) throw std::runtime_error(std::string("'tracker.") + key + "' must be " + what);
   };
-  require(c.icp_min_distance_m <= c.icp_max_distance_m, "icp_min_distance_m", "at most icp_max_distance_m");
-  require(c.direction_majority <= c.direction_window, "direction_majority", "at most direction_window");
-  require(c.predict_camera_s <= c.max_prediction_s, "predict_camera_s", "at most max_prediction_s");
+  require(c.registration.icp_min_distance_m <= c.registration.icp_max_distance_m, "registration.icp_min_distance_m",
+          "at most registration.icp_max_distance_m");
+  require(c.direction.majority <= c.direction.window, "direction.majority", "at most direction.window");
+  require(c.motion.predict_camera_s <= c.motion.max_prediction_s, "motion.predict_camera_s",
+          "at most motion.max_prediction_s");
 }
 
 TrackerConfig tracker_config_from_json(const nlohmann::json& object, const std::string& file) {
   TrackerConfig c;
   ConfigReader r(object, file, "tracker");
+  r.set_unknown_key_hint(" (tracker keys are grouped by concept, e.g. 'tracker.lifecycle.reset_after_s': "
+                         "see config/default.json or --print-config)");
   c.visit(r);
   r.finish();
   try {

@@ -1,5 +1,6 @@
 // Every parameter of the stair tracker (thesis chapter 5 plus real-speed
-// tracking), with its unit and default.
+// tracking): one struct per concept, each field with its unit, default,
+// allowed range and a one-line reason; read only where that concept lives.
 #pragma once
 
 #include "common/limits.hpp"
@@ -10,81 +11,74 @@
 
 namespace stairs {
 
-struct TrackerConfig {
-  // --- seeding
-  int min_seed_steps = 2;  // steps an observation needs to start a model
-
-  // --- registration (4-DoF ICP in the gravity-aligned frame: x, y, z, yaw)
-  double icp_max_distance_m = 1.0;   // m; first (coarsest) correspondence threshold, at most
-  double icp_max_tread_fraction = 0.4;  // of the typical tread: the first threshold's cap (aliasing)
-  double icp_min_distance_m = 0.01;  // m; last (finest) threshold
-  double icp_distance_factor = 0.5;  // threshold shrink per stage
-  int icp_iterations_per_stage = 2;  // closed-form updates per threshold
-  int registration_points_per_plane = 128;  // observation points used per tread/riser (even stride)
-  double nosing_weight_points = 40.0;       // one observed nosing counts as this many plane points
-  double accept_distance_m = 0.04;          // m; a point within this of the model counts as agreeing
-  double min_inlier_ratio = 0.5;            // registrations agreeing less are rejected
-  double max_yaw_jump_deg = 15.0;           // deg; per observation, vs. the motion prior
-  double max_translation_jump_m = 0.12;     // m; ICP correction vs. the motion prior (< half a tread)
-  double velocity_window_s = 0.5;           // s; constant velocity from the poses this far back (noise / window)
-  double max_prediction_s = 1.5;            // s; longer gaps predict no motion (relocalise instead)
-  double observed_height_max_riser_fraction = 0.5;  // of a riser: perception's height over the surface
-                                                    // beneath corrects the prior's only this close (else
-                                                    // that surface may be the next level ahead)
-  double predict_camera_s = 1.0;            // s; an update that registers nothing (no steps in view,
-                                            // a rejected registration) still places the camera by the
-                                            // motion prior this long after the last registration
-
-  // --- odometry (optional input, tracker/odometry_prior.hpp): the motion prior where it covers
-  double odometry_max_age_s = 0.25;  // s; odometry this old at a frame still holds (late samples,
-                                     // 4 Hz odometry at worst); older is no prior
-  int odometry_max_samples = 20000;  // history cap (200 s at 100 Hz): memory stays bounded
-
-  // --- relocalisation after a gap or loss
-  double relocalise_after_s = 0.2;  // s; a gap longer than this triggers a whole-step search
-  int relocalise_step_range = 2;    // whole-step shifts tried each way
-  double relocalise_min_gain = 0.05;  // of the prior's agreeing points: a shift must add this many more
-
-  // --- merge (thesis 5.2)
-  double match_riser_fraction = 0.5;   // steps match within this fraction of a riser height (z)
-  double match_tread_fraction = 0.5;   // ... and of a tread depth (x)
+// --- stair: what the model assumes of a stair until it has measured one (stair_map.hpp)
+struct StairPriorConfig {
+  double default_riser_m = 0.17;        // m; used until the model has measured risers
+  double default_tread_m = 0.28;        // m; used until the model has measured treads
+  double landing_min_depth_m = 0.5;     // m; a deeper tread is a landing
   double typical_riser_fraction = 0.3;  // of the typical riser: consecutive steps this regular give the
-                                       // typical tread (a step missing between them would double the rise)
-  int max_average_weight = 30;         // running averages turn exponential after this many observations
-  int max_plane_points = 1024;         // model points per plane (ICP rejections only)
-  double default_riser_m = 0.17;       // m; used until the model has measured risers
-  double default_tread_m = 0.28;       // m; used until the model has measured treads
-  double landing_min_depth_m = 0.5;    // m; a deeper tread becomes a landing
-  int min_confirmations = 2;           // observations a step needs to be published
-  int max_model_steps = 128;           // cap on the model's steps (memory and message size)
-  double monotonic_tolerance_m = 0.04; // m; a new step must rise with x within this
+                                        // typical tread (a step missing between them would double the rise)
 
-  // --- direction hysteresis
-  int direction_window = 7;    // last observations considered
-  int direction_majority = 5;  // votes needed to change the direction
+  template <class V>
+  void visit(V& v) {
+    v("default_riser_m", default_riser_m, 0.01, 1.0);
+    v("default_tread_m", default_tread_m, 0.01, 2.0);
+    v("landing_min_depth_m", landing_min_depth_m, 0.0, 10.0);
+    v("typical_riser_fraction", typical_riser_fraction, 0.01, 1.0);
+  }
+};
 
-  // --- occlusion reconstruction on the model (thesis 4.5 applied to the model)
-  int max_reconstructed_gap_steps = 3;  // at most this many missing steps filled between two seen ones
-  double reconstruct_tolerance = 0.25;  // fraction of a riser/tread a gap may deviate from whole steps
-
-  // --- quality and reset
-  double lost_after_s = 0.5;  // s without an accepted registration: state Lost
-  double reset_after_s = 5.0; // s lost: the model is dropped when the next stair comes into view
-  double time_jump_back_s = 1.0;  // s; an observation this much older than the last starts a new stream
-                                  // (a log replayed, a camera restarted): the model is reset; a smaller
-                                  // step back is an out-of-order observation and is dropped
+// --- confirmation: when a model starts and when it is published (thesis 5.1)
+struct ConfirmationConfig {
+  int min_seed_steps = 2;     // steps an observation needs to start a model, and confirmed steps to publish it
+  int min_confirmations = 2;  // observations a step needs to be published
 
   template <class V>
   void visit(V& v) {
     v("min_seed_steps", min_seed_steps, 1, 64);
+    v("min_confirmations", min_confirmations, 1, 1000);
+  }
+};
+
+// --- registration: 4-DoF ICP in the gravity-aligned frame (x, y, z, yaw; thesis 5.1)
+struct RegistrationConfig {
+  double icp_max_distance_m = 1.0;      // m; first (coarsest) correspondence threshold, at most
+  double icp_max_tread_fraction = 0.4;  // of the typical tread: the first threshold's cap (aliasing)
+  double icp_min_distance_m = 0.01;     // m; last (finest) threshold
+  double icp_distance_factor = 0.5;     // threshold shrink per stage
+  int icp_iterations_per_stage = 2;     // closed-form updates per threshold
+  int points_per_plane = 128;           // observation points used per tread/riser (even stride)
+  double nosing_weight_points = 40.0;   // one observed nosing counts as this many plane points
+  double accept_distance_m = 0.04;      // m; a point within this of the model counts as agreeing
+
+  template <class V>
+  void visit(V& v) {
     v("icp_max_distance_m", icp_max_distance_m, 0.001, 10.0);
     v("icp_max_tread_fraction", icp_max_tread_fraction, 0.01, 10.0);
     v("icp_min_distance_m", icp_min_distance_m, 0.0001, 10.0);
     v("icp_distance_factor", icp_distance_factor, 0.01, 0.99);
     v("icp_iterations_per_stage", icp_iterations_per_stage, 1, 100);
-    v("registration_points_per_plane", registration_points_per_plane, 1, limits::kPlanePoints);
+    v("points_per_plane", points_per_plane, 1, limits::kPlanePoints);
     v("nosing_weight_points", nosing_weight_points, 0.0, 10000.0);
     v("accept_distance_m", accept_distance_m, 0.0001, 1.0);
+  }
+};
+
+// --- motion: the prior between registrations and the checks against it (tracker.cpp)
+struct MotionConfig {
+  double min_inlier_ratio = 0.5;         // registrations agreeing less are rejected
+  double max_yaw_jump_deg = 15.0;        // deg; per observation, vs. the motion prior
+  double max_translation_jump_m = 0.12;  // m; ICP correction vs. the motion prior (< half a tread)
+  double velocity_window_s = 0.5;        // s; constant velocity from the poses this far back (noise / window)
+  double max_prediction_s = 1.5;         // s; longer gaps predict no motion (relocalise instead)
+  double observed_height_max_riser_fraction = 0.5;  // of a riser: perception's height over the surface
+                                                    // beneath corrects the prior's only this close (else
+                                                    // that surface may be the next level ahead)
+  double predict_camera_s = 1.0;  // s; an update that registers nothing (no steps in view, a rejected
+                                  // registration) still places the camera by the motion prior this long
+
+  template <class V>
+  void visit(V& v) {
     v("min_inlier_ratio", min_inlier_ratio, 0.0, 1.0);
     v("max_yaw_jump_deg", max_yaw_jump_deg, 0.0, 180.0);
     v("max_translation_jump_m", max_translation_jump_m, 0.0, 10.0);
@@ -92,29 +86,121 @@ struct TrackerConfig {
     v("max_prediction_s", max_prediction_s, 0.0, 60.0);
     v("observed_height_max_riser_fraction", observed_height_max_riser_fraction, 0.0, 2.0);
     v("predict_camera_s", predict_camera_s, 0.0, 60.0);
-    v("odometry_max_age_s", odometry_max_age_s, 0.0, 10.0);
-    v("odometry_max_samples", odometry_max_samples, 2, 1000000);
-    v("relocalise_after_s", relocalise_after_s, 0.0, 60.0);
-    v("relocalise_step_range", relocalise_step_range, 0, 10);
-    v("relocalise_min_gain", relocalise_min_gain, 0.0, 10.0);
+  }
+};
+
+// --- odometry (optional input, tracker/odometry_prior.hpp): the motion prior where it covers
+struct OdometryConfig {
+  double max_age_s = 0.25;  // s; odometry this old at a frame still holds (late samples, 4 Hz odometry
+                            // at worst); older is no prior
+  int max_samples = 20000;  // history cap (200 s at 100 Hz): memory stays bounded
+
+  template <class V>
+  void visit(V& v) {
+    v("max_age_s", max_age_s, 0.0, 10.0);
+    v("max_samples", max_samples, 2, 1000000);
+  }
+};
+
+// --- relocalisation after a gap or loss: a whole-step search (relocalisation.hpp)
+struct RelocalisationConfig {
+  double after_s = 0.2;     // s; a gap longer than this triggers a whole-step search
+  int step_range = 2;       // whole-step shifts tried each way
+  double min_gain = 0.05;   // of the prior's agreeing points: a shift must add this many more
+
+  template <class V>
+  void visit(V& v) {
+    v("after_s", after_s, 0.0, 60.0);
+    v("step_range", step_range, 0, 10);
+    v("min_gain", min_gain, 0.0, 10.0);
+  }
+};
+
+// --- merge: observed steps into the model (thesis 5.2)
+struct MergeConfig {
+  double match_riser_fraction = 0.5;    // steps match within this fraction of a riser height (z)
+  double match_tread_fraction = 0.5;    // ... and of a tread depth (x)
+  int max_average_weight = 30;          // running averages turn exponential after this many observations
+  int max_plane_points = 1024;          // model points per plane (ICP rejections only)
+  int max_model_steps = 128;            // cap on the model's steps (memory and message size)
+  double monotonic_tolerance_m = 0.04;  // m; a new step must rise with x within this
+
+  template <class V>
+  void visit(V& v) {
     v("match_riser_fraction", match_riser_fraction, 0.01, 1.0);
     v("match_tread_fraction", match_tread_fraction, 0.01, 1.0);
-    v("typical_riser_fraction", typical_riser_fraction, 0.01, 1.0);
     v("max_average_weight", max_average_weight, 1, 1000000);
     v("max_plane_points", max_plane_points, 0, limits::kPlanePoints);
-    v("default_riser_m", default_riser_m, 0.01, 1.0);
-    v("default_tread_m", default_tread_m, 0.01, 2.0);
-    v("landing_min_depth_m", landing_min_depth_m, 0.0, 10.0);
-    v("min_confirmations", min_confirmations, 1, 1000);
     v("max_model_steps", max_model_steps, 1, limits::kModelPlanes / 2);  // a riser and a tread plane each
     v("monotonic_tolerance_m", monotonic_tolerance_m, 0.0, 1.0);
-    v("direction_window", direction_window, 1, 1000);
-    v("direction_majority", direction_majority, 1, 1000);
-    v("max_reconstructed_gap_steps", max_reconstructed_gap_steps, 0, 64);
-    v("reconstruct_tolerance", reconstruct_tolerance, 0.0, 1.0);
+  }
+};
+
+// --- reconstruction: occluded steps filled in the model (thesis 4.5 applied to the model)
+struct ModelReconstructionConfig {
+  int max_gap_steps = 3;    // at most this many missing steps filled between two seen ones
+  double tolerance = 0.25;  // fraction of a riser/tread a gap may deviate from whole steps
+
+  template <class V>
+  void visit(V& v) {
+    v("max_gap_steps", max_gap_steps, 0, 64);
+    v("tolerance", tolerance, 0.0, 1.0);
+  }
+};
+
+// --- direction: hysteresis over the observations' up/down (direction.hpp)
+struct DirectionConfig {
+  int window = 7;    // last observations considered
+  int majority = 5;  // votes needed to change the direction
+
+  template <class V>
+  void visit(V& v) {
+    v("window", window, 1, 1000);
+    v("majority", majority, 1, 1000);
+  }
+};
+
+// --- lifecycle: lost, reset, new stream
+struct LifecycleConfig {
+  double lost_after_s = 0.5;      // s without an accepted registration: state Lost
+  double reset_after_s = 5.0;     // s lost: the model is dropped when the next stair comes into view
+  double time_jump_back_s = 1.0;  // s; an observation this much older than the last starts a new stream
+                                  // (a log replayed, a camera restarted): the model is reset; a smaller
+                                  // step back is an out-of-order observation and is dropped
+
+  template <class V>
+  void visit(V& v) {
     v("lost_after_s", lost_after_s, 0.001, 3600.0);
     v("reset_after_s", reset_after_s, 0.001, 86400.0);
     v("time_jump_back_s", time_jump_back_s, 0.001, 86400.0);
+  }
+};
+
+// The whole tracker (thesis chapter 5 plus real-speed tracking): one section per concept.
+struct TrackerConfig {
+  StairPriorConfig stair;
+  ConfirmationConfig confirmation;
+  RegistrationConfig registration;
+  MotionConfig motion;
+  OdometryConfig odometry;
+  RelocalisationConfig relocalisation;
+  MergeConfig merge;
+  ModelReconstructionConfig reconstruction;
+  DirectionConfig direction;
+  LifecycleConfig lifecycle;
+
+  template <class V>
+  void visit(V& v) {
+    v.section("stair", stair);
+    v.section("confirmation", confirmation);
+    v.section("registration", registration);
+    v.section("motion", motion);
+    v.section("odometry", odometry);
+    v.section("relocalisation", relocalisation);
+    v.section("merge", merge);
+    v.section("reconstruction", reconstruction);
+    v.section("direction", direction);
+    v.section("lifecycle", lifecycle);
   }
 };
 

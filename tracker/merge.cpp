@@ -41,7 +41,7 @@ void add_rejections(const Plane& p, const Eigen::Isometry3f& pose, int axis, dou
   }
 }
 
-void update(MapStep& m, const ObservedStep& o, const Pose4& pose, const TrackerConfig& c) {
+void update(MapStep& m, const ObservedStep& o, const Pose4& pose, const MergeConfig& c, double min_distance_m) {
   const int cap = c.max_average_weight;
   if (o.riser_x_m) m.riser_x_m.add(*o.riser_x_m, cap);
   m.nosing_x_m.add(o.nosing_m.x(), cap);
@@ -54,16 +54,16 @@ void update(MapStep& m, const ObservedStep& o, const Pose4& pose, const TrackerC
   m.reconstructed = false;
   const Eigen::Isometry3f to_model = pose.isometry().cast<float>();
   if (o.riser)
-    add_rejections(*o.riser, to_model, 0, m.x(), c.icp_min_distance_m, c.max_plane_points, m.riser_points,
+    add_rejections(*o.riser, to_model, 0, m.x(), min_distance_m, c.max_plane_points, m.riser_points,
                    m.riser_points_seen);
   if (o.tread)
-    add_rejections(*o.tread, to_model, 2, m.z(), c.icp_min_distance_m, c.max_plane_points, m.tread_points,
+    add_rejections(*o.tread, to_model, 2, m.z(), min_distance_m, c.max_plane_points, m.tread_points,
                    m.tread_points_seen);
 }
 
 // A new step must keep the stair rising: above every step before it and below
 // every step after it, by at least half a riser.
-bool fits_between(const StairMap& map, size_t at, const ObservedStep& o, double riser, const TrackerConfig& c) {
+bool fits_between(const StairMap& map, size_t at, const ObservedStep& o, double riser, const MergeConfig& c) {
   const double need = 0.5 * riser - c.monotonic_tolerance_m;
   if (at > 0 && o.z() - map.steps[at - 1].z() < need) return false;
   if (at < map.steps.size() && map.steps[at].z() - o.z() < need) return false;
@@ -98,9 +98,10 @@ std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& po
   return out;
 }
 
-int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4& pose, const TrackerConfig& c) {
-  const double riser = typical_riser_m(map, c);
-  const double tread = typical_tread_m(map, c);
+int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4& pose, const MergeConfig& c,
+          const StairPriorConfig& stair, double min_distance_m) {
+  const double riser = typical_riser_m(map, stair);
+  const double tread = typical_tread_m(map, stair);
   // Match against the model as it was before this observation.
   std::vector<int> match(observed.size(), -1);
   std::vector<bool> taken(map.steps.size(), false);
@@ -118,7 +119,7 @@ int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4&
     if (match[i] >= 0) taken[match[i]] = true;
   }
   for (size_t i = 0; i < observed.size(); ++i)
-    if (match[i] >= 0) update(map.steps[match[i]], observed[i], pose, c);
+    if (match[i] >= 0) update(map.steps[match[i]], observed[i], pose, c, min_distance_m);
 
   int inserted = 0;
   for (size_t i = 0; i < observed.size(); ++i) {
@@ -129,7 +130,7 @@ int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4&
                     map.steps.begin();
     if (!fits_between(map, static_cast<size_t>(at), o, riser, c)) continue;
     MapStep m;
-    update(m, o, pose, c);
+    update(m, o, pose, c, min_distance_m);
     map.steps.insert(map.steps.begin() + at, std::move(m));
     ++inserted;
   }

@@ -13,7 +13,8 @@
 
 namespace stairs {
 
-struct TrackerConfig;
+struct MergeConfig;
+struct StairPriorConfig;
 
 // One observed step expressed in the model frame W.
 struct ObservedStep {
@@ -29,6 +30,7 @@ struct ObservedStep {
 std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& pose);
 
 // Returns the number of new steps inserted.
-int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4& pose, const TrackerConfig& c);
+int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4& pose, const MergeConfig& c,
+          const StairPriorConfig& stair, double min_distance_m);
 
 }  // namespace stairs

@@ -32,7 +32,7 @@ Plane box_plane(PlaneKind kind, const Eigen::Vector3d& bottom_left, const Eigen:
 
 // The steps a model publishes: confirmed by min_confirmations observations
 // (or reconstructed between such), and none until min_seed_steps are.
-std::vector<const MapStep*> published_steps(const StairMap& map, const TrackerConfig& c, bool& confirmed) {
+std::vector<const MapStep*> published_steps(const StairMap& map, const ConfirmationConfig& c, bool& confirmed) {
   std::vector<const MapStep*> steps;
   int n = 0;
   for (const auto& s : map.steps) {
@@ -47,7 +47,8 @@ std::vector<const MapStep*> published_steps(const StairMap& map, const TrackerCo
 
 // Published step i (relative to `origin`), its riser and tread planes appended to `planes`.
 Step model_step(const std::vector<const MapStep*>& steps, size_t i, double first_riser, double tread_typ,
-                const Eigen::Vector3d& origin, double camera_y, const TrackerConfig& c, std::vector<Plane>& planes) {
+                const Eigen::Vector3d& origin, double camera_y, const StairPriorConfig& c,
+                std::vector<Plane>& planes) {
   const MapStep& s = *steps[i];
   Step out;
   // A rise measured within one frame (tread to tread, no registration in
@@ -103,7 +104,8 @@ void place_camera(const Pose4& camera, const Eigen::Quaterniond& gravity_rotatio
 }  // namespace
 
 void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
-                const Eigen::Quaterniond& gravity_rotation, const TrackerConfig& c, StairModel& out) {
+                const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
+                const StairPriorConfig& stair, StairModel& out) {
   out.flights.clear();
   out.planes.clear();
   const std::vector<const MapStep*> steps = published_steps(map, c, out.confirmed);
@@ -114,15 +116,15 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
   if (steps.empty()) return;
 
   const MapStep& first = *steps.front();
-  const double first_riser = first.riser_height_m.known() ? first.riser_height_m.value : typical_riser_m(map, c);
+  const double first_riser = first.riser_height_m.known() ? first.riser_height_m.value : typical_riser_m(map, stair);
   const double y_mid = first.y_min_m.known() && first.y_max_m.known()
                            ? 0.5 * (first.y_min_m.value + first.y_max_m.value)
                            : camera.t_m.y();
   const Eigen::Vector3d origin(first.x(), y_mid, first.z() - first_riser);
-  const double tread_typ = typical_tread_m(map, c);
+  const double tread_typ = typical_tread_m(map, stair);
   Flight flight;
   for (size_t i = 0; i < steps.size(); ++i) {
-    const Step step = model_step(steps, i, first_riser, tread_typ, origin, camera.t_m.y(), c, out.planes);
+    const Step step = model_step(steps, i, first_riser, tread_typ, origin, camera.t_m.y(), stair, out.planes);
     flight.width_m = std::max(flight.width_m, step.width_m);
     flight.steps.push_back(step);
     // A landing ends its flight unless it is the top of the model.

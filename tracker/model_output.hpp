@@ -9,13 +9,15 @@
 
 namespace stairs {
 
-struct TrackerConfig;
+struct ConfirmationConfig;
+struct StairPriorConfig;
 
 // Fills out.flights, out.planes and the camera fields; leaves state, counters,
 // direction and quality to the caller. `camera` is the gravity-aligned camera
 // frame -> W pose; `gravity_rotation` is the observation's optical -> gravity.
 void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
-                const Eigen::Quaterniond& gravity_rotation, const TrackerConfig& c, StairModel& out);
+                const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
+                const StairPriorConfig& stair, StairModel& out);
 
 // The model's steps as seen from its camera: every flight's steps, bottom to
 // top, with nosings in the camera's gravity-aligned frame (an observation's

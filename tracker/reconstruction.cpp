@@ -6,21 +6,22 @@
 
 namespace stairs {
 
-int reconstruct_occluded_steps(StairMap& map, const TrackerConfig& c) {
-  const double riser = typical_riser_m(map, c);
-  const double tread = typical_tread_m(map, c);
+int reconstruct_occluded_steps(StairMap& map, const ModelReconstructionConfig& c, const StairPriorConfig& stair,
+                               int min_confirmations, int max_model_steps) {
+  const double riser = typical_riser_m(map, stair);
+  const double tread = typical_tread_m(map, stair);
   int filled = 0;
   for (size_t i = 1; i < map.steps.size(); ++i) {
     const MapStep& a = map.steps[i - 1];
     const MapStep& b = map.steps[i];
-    if (a.confirmations < c.min_confirmations || b.confirmations < c.min_confirmations) continue;
+    if (a.confirmations < min_confirmations || b.confirmations < min_confirmations) continue;
     const double dz = b.z() - a.z(), dx = b.x() - a.x();
     const int n = static_cast<int>(std::lround(dz / riser));
-    if (n < 2 || n - 1 > c.max_reconstructed_gap_steps ||
-        static_cast<int>(map.steps.size()) + n - 1 > c.max_model_steps)
+    if (n < 2 || n - 1 > c.max_gap_steps ||
+        static_cast<int>(map.steps.size()) + n - 1 > max_model_steps)
       continue;
-    if (std::abs(dz - n * riser) > c.reconstruct_tolerance * riser ||
-        std::abs(dx - n * tread) > c.reconstruct_tolerance * n * tread)
+    if (std::abs(dz - n * riser) > c.tolerance * riser ||
+        std::abs(dx - n * tread) > c.tolerance * n * tread)
       continue;
     std::vector<MapStep> hidden;
     for (int k = 1; k < n; ++k) {

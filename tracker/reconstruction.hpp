@@ -8,9 +8,11 @@
 
 namespace stairs {
 
-struct TrackerConfig;
+struct ModelReconstructionConfig;
+struct StairPriorConfig;
 
 // Returns the number of steps filled in.
-int reconstruct_occluded_steps(StairMap& map, const TrackerConfig& c);
+int reconstruct_occluded_steps(StairMap& map, const ModelReconstructionConfig& c, const StairPriorConfig& stair,
+                               int min_confirmations, int max_model_steps);
 
 }  // namespace stairs

@@ -22,7 +22,7 @@ struct Profile {
   std::vector<Eigen::Vector2d> nosing_xz;
 };
 
-Profile profile(const StairMap& map, const TrackerConfig& c) {
+Profile profile(const StairMap& map, const StairPriorConfig& c) {
   Profile p;
   const double floor_z = floor_z_m(map, c);
   // The level the first riser stands on (the floor, or the landing the flight
@@ -128,11 +128,11 @@ double yaw_from_axis(double axis_angle_rad, double prior_yaw_rad) {
 }
 
 Registration register_to_map(const RegistrationInput& in, const StairMap& map, const Pose4& initial,
-                             const TrackerConfig& c) {
+                             const RegistrationConfig& c, const StairPriorConfig& stair) {
   Registration reg;
   reg.pose = initial;
   if (map.empty()) return reg;
-  const Profile prof = profile(map, c);
+  const Profile prof = profile(map, stair);
   const Eigen::Matrix3d R = initial.rotation();
   std::vector<Eigen::Vector3d> risers, treads, nosings;
   for (const auto& p : in.riser_points) risers.push_back(R * p);
@@ -144,7 +144,7 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
   // of a tread let the observation slide onto the next step (whole-step shifts
   // are relocalisation's search).
   const double first_thr =
-      std::max(c.icp_min_distance_m, std::min(c.icp_max_distance_m, c.icp_max_tread_fraction * typical_tread_m(map, c)));
+      std::max(c.icp_min_distance_m, std::min(c.icp_max_distance_m, c.icp_max_tread_fraction * typical_tread_m(map, stair)));
   for (double thr = first_thr;; thr = std::max(thr * c.icp_distance_factor, c.icp_min_distance_m)) {
     for (int it = 0; it < c.icp_iterations_per_stage; ++it) {
       const Eigen::Vector3d& t = reg.pose.t_m;

@@ -13,7 +13,8 @@
 
 namespace stairs {
 
-struct TrackerConfig;
+struct RegistrationConfig;
+struct StairPriorConfig;
 
 // Observation samples in the gravity-aligned camera frame.
 struct RegistrationInput {
@@ -42,6 +43,6 @@ struct Registration {
 
 // Registers with yaw fixed to `initial.yaw_rad`, starting from `initial`.
 Registration register_to_map(const RegistrationInput& in, const StairMap& map, const Pose4& initial,
-                             const TrackerConfig& c);
+                             const RegistrationConfig& c, const StairPriorConfig& stair);
 
 }  // namespace stairs

@@ -8,6 +8,10 @@
 
 namespace stairs {
 
-Registration relocalise(const RegistrationInput& in, const StairMap& map, const Pose4& prior, const TrackerConfig& c);
+struct RelocalisationConfig;
+
+Registration relocalise(const RegistrationInput& in, const StairMap& map, const Pose4& prior,
+                        const RelocalisationConfig& c, const RegistrationConfig& registration,
+                        const StairPriorConfig& stair);
 
 }  // namespace stairs

@@ -15,7 +15,7 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-double typical_riser_m(const StairMap& map, const TrackerConfig& c) {
+double typical_riser_m(const StairMap& map, const StairPriorConfig& c) {
   std::vector<double> r;
   for (const auto& s : map.steps)
     if (s.riser_height_m.known()) r.push_back(s.riser_height_m.value);
@@ -26,7 +26,7 @@ double typical_riser_m(const StairMap& map, const TrackerConfig& c) {
   return r.empty() ? c.default_riser_m : median(r);
 }
 
-double typical_tread_m(const StairMap& map, const TrackerConfig& c) {
+double typical_tread_m(const StairMap& map, const StairPriorConfig& c) {
   std::vector<double> t;
   const double riser = typical_riser_m(map, c);
   for (size_t i = 1; i < map.steps.size(); ++i) {
@@ -37,20 +37,20 @@ double typical_tread_m(const StairMap& map, const TrackerConfig& c) {
   return t.empty() ? c.default_tread_m : median(t);
 }
 
-double floor_z_m(const StairMap& map, const TrackerConfig& c) {
+double floor_z_m(const StairMap& map, const StairPriorConfig& c) {
   const MapStep& first = map.steps.front();
   const double riser = first.riser_height_m.known() ? first.riser_height_m.value : typical_riser_m(map, c);
   return first.z() - riser;
 }
 
-double surface_z_m(const StairMap& map, double x_m, const TrackerConfig& c) {
+double surface_z_m(const StairMap& map, double x_m, const StairPriorConfig& c) {
   double z = floor_z_m(map, c);
   for (const MapStep& s : map.steps)
     if (s.x() <= x_m) z = s.z();
   return z;
 }
 
-double mean_surface_z_m(const StairMap& map, double x_m, const TrackerConfig& c) {
+double mean_surface_z_m(const StairMap& map, double x_m, const StairPriorConfig& c) {
   // Exact mean of the piecewise-constant surface over [x - half, x + half].
   const double half = 0.5 * typical_tread_m(map, c);
   double at = x_m - half, z = surface_z_m(map, at, c), sum = 0.0;

@@ -9,7 +9,7 @@
 
 namespace stairs {
 
-struct TrackerConfig;
+struct StairPriorConfig;
 
 // A running mean that turns into an exponential one after `cap` samples, so
 // the model keeps following slow drift.
@@ -46,17 +46,17 @@ struct StairMap {
 
 // Typical riser height and tread depth of the model (medians of adjacent
 // steps), or the configured defaults while the model is too small.
-double typical_riser_m(const StairMap& map, const TrackerConfig& c);
-double typical_tread_m(const StairMap& map, const TrackerConfig& c);
+double typical_riser_m(const StairMap& map, const StairPriorConfig& c);
+double typical_tread_m(const StairMap& map, const StairPriorConfig& c);
 // Height of the level at x (W): the tread of the last step whose edge is at or
 // behind x, the floor before the first.
-double surface_z_m(const StairMap& map, double x_m, const TrackerConfig& c);
+double surface_z_m(const StairMap& map, double x_m, const StairPriorConfig& c);
 
 // The surface at x averaged over one typical tread around it: the stair's mean
 // slope on a flight, level on a landing or floor (what a walker's head follows).
-double mean_surface_z_m(const StairMap& map, double x_m, const TrackerConfig& c);
+double mean_surface_z_m(const StairMap& map, double x_m, const StairPriorConfig& c);
 
 // Height of the floor below the first step.
-double floor_z_m(const StairMap& map, const TrackerConfig& c);
+double floor_z_m(const StairMap& map, const StairPriorConfig& c);
 
 }  // namespace stairs

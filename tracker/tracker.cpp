@@ -40,9 +40,9 @@ std::optional<double> ascending_yaw(const Observation& obs) {
 
 Tracker::Tracker(TrackerConfig config)
     : config_(config),
-      direction_(config.direction_window, config.direction_majority),
-      odometry_(config.odometry_max_age_s, static_cast<size_t>(std::max(2, config.odometry_max_samples)),
-                config.time_jump_back_s) {
+      direction_(config.direction.window, config.direction.majority),
+      odometry_(config.odometry.max_age_s, static_cast<size_t>(std::max(2, config.odometry.max_samples)),
+                config.lifecycle.time_jump_back_s) {
   validate(config_);
 }
 
@@ -57,12 +57,12 @@ void Tracker::reset() {
 }
 
 bool Tracker::seed(const Observation& obs) {
-  if (!obs.camera.valid || static_cast<int>(obs.steps.size()) < config_.min_seed_steps) return false;
+  if (!obs.camera.valid || static_cast<int>(obs.steps.size()) < config_.confirmation.min_seed_steps) return false;
   const auto yaw = ascending_yaw(obs);
   if (!yaw) return false;
   Pose4 pose;
   pose.yaw_rad = *yaw;
-  merge(map_, observed_steps(obs, pose), pose, config_);
+  merge(map_, observed_steps(obs, pose), pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
   if (map_.empty()) return false;
   accepted_.emplace_back(obs.source_utime, pose);
   model_.observations_fused = 1;
@@ -82,13 +82,13 @@ Pose4 Tracker::predict(int64_t utime) const {
   if (const auto p = odometry_.predict(p1, t1, utime)) return *p;
   const auto& [t0, p0] = accepted_.front();
   const double dt = seconds(utime - t1);
-  if (t1 == t0 || dt > config_.max_prediction_s) return p1;
+  if (t1 == t0 || dt > config_.motion.max_prediction_s) return p1;
   const double span = seconds(t1 - t0);
   Pose4 p = p1;
   p.t_m += (p1.t_m - p0.t_m) * (dt / span);
   // Height follows the stair's mean slope under the camera, not the last
   // vertical speed: a gap across a flight's end would carry its slope on.
-  p.t_m.z() = p1.t_m.z() + mean_surface_z_m(map_, p.t_m.x(), config_) - mean_surface_z_m(map_, p1.t_m.x(), config_);
+  p.t_m.z() = p1.t_m.z() + mean_surface_z_m(map_, p.t_m.x(), config_.stair) - mean_surface_z_m(map_, p1.t_m.x(), config_.stair);
   p.yaw_rad = wrap_angle(p1.yaw_rad + wrap_angle(p1.yaw_rad - p0.yaw_rad) * (dt / span));
   return p;
 }
@@ -121,7 +121,7 @@ const StairModel& Tracker::update(const Observation& obs) {
 }
 
 std::string Tracker::restart_if_time_went_back(int64_t utime) {
-  if (!have_utime_ || seconds(last_utime_ - utime) <= config_.time_jump_back_s) return {};
+  if (!have_utime_ || seconds(last_utime_ - utime) <= config_.lifecycle.time_jump_back_s) return {};
   // Time went back by more than any reordering: a new stream (a log replayed,
   // a camera restarted). The old model's poses and times mean nothing in it.
   char what[64];
@@ -136,7 +136,7 @@ std::string Tracker::restart_if_time_went_back(int64_t utime) {
 // prior still places it.
 void Tracker::drop_if_lost_long(const Observation& obs, bool with_odometry) {
   if (map_.empty() || obs.steps.empty() || with_odometry ||
-      seconds(obs.source_utime - accepted_.back().first) <= config_.reset_after_s)
+      seconds(obs.source_utime - accepted_.back().first) <= config_.lifecycle.reset_after_s)
     return;
   reset();
   model_.direction = direction_.update(obs.direction);
@@ -149,8 +149,8 @@ void Tracker::drop_if_lost_long(const Observation& obs, bool with_odometry) {
 // observed_height_max_riser_fraction of a riser off the prior is not taken.
 Pose4 Tracker::with_observed_height(const Observation& obs, Pose4 pose) const {
   if (!obs.camera.valid || !obs.camera.height_m) return pose;
-  const double z = surface_z_m(map_, pose.t_m.x(), config_) + *obs.camera.height_m;
-  if (std::abs(z - pose.t_m.z()) < config_.observed_height_max_riser_fraction * typical_riser_m(map_, config_))
+  const double z = surface_z_m(map_, pose.t_m.x(), config_.stair) + *obs.camera.height_m;
+  if (std::abs(z - pose.t_m.z()) < config_.motion.observed_height_max_riser_fraction * typical_riser_m(map_, config_.stair))
     pose.t_m.z() = z;
   return pose;
 }
@@ -160,8 +160,8 @@ Pose4 Tracker::with_observed_height(const Observation& obs, Pose4 pose) const {
 // view) while that is fresh; attitude is the observation's own.
 void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool with_odometry, double since_accept_s,
                              const std::string& why) {
-  if (since_accept_s > config_.lost_after_s) model_.state = TrackingState::Lost;
-  const bool predicted = obs.camera.valid && (with_odometry || since_accept_s <= config_.predict_camera_s);
+  if (since_accept_s > config_.lifecycle.lost_after_s) model_.state = TrackingState::Lost;
+  const bool predicted = obs.camera.valid && (with_odometry || since_accept_s <= config_.motion.predict_camera_s);
   model_.status = !predicted      ? why
                   : with_odometry ? why + "; camera from odometry"
                                   : why + "; camera from the motion prior";
@@ -176,17 +176,17 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   Pose4 start_pose = prior;
   if (const auto axis = observed_axis_angle_rad(obs)) {
     const double yaw = yaw_from_axis(*axis, prior.yaw_rad);
-    if (std::abs(wrap_angle(yaw - prior.yaw_rad)) <= config_.max_yaw_jump_deg * M_PI / 180.0) start_pose.yaw_rad = yaw;
+    if (std::abs(wrap_angle(yaw - prior.yaw_rad)) <= config_.motion.max_yaw_jump_deg * M_PI / 180.0) start_pose.yaw_rad = yaw;
   }
-  const RegistrationInput input = registration_input(obs, config_.registration_points_per_plane);
+  const RegistrationInput input = registration_input(obs, config_.registration.points_per_plane);
   // Odometry over a gap is a better prior than a whole-step search.
   const bool relocalising =
-      !with_odometry && (since_accept_s > config_.relocalise_after_s || model_.state == TrackingState::Lost);
-  Registration reg = relocalising ? relocalise(input, map_, start_pose, config_)
-                                  : register_to_map(input, map_, start_pose, config_);
+      !with_odometry && (since_accept_s > config_.relocalisation.after_s || model_.state == TrackingState::Lost);
+  Registration reg = relocalising ? relocalise(input, map_, start_pose, config_.relocalisation, config_.registration, config_.stair)
+                                  : register_to_map(input, map_, start_pose, config_.registration, config_.stair);
   // Entirely beyond the model (the next flight seen from a landing): nothing
   // to register against, so the motion prior places it while it is fresh.
-  const bool dead_reckoned = reg.within == 0 && (with_odometry || since_accept_s <= config_.max_prediction_s);
+  const bool dead_reckoned = reg.within == 0 && (with_odometry || since_accept_s <= config_.motion.max_prediction_s);
   if (dead_reckoned) {
     reg.pose = with_observed_height(obs, start_pose);
     reg.inlier_ratio = 1.0;
@@ -195,9 +195,9 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   model_.registration_inlier_ratio = reg.inlier_ratio;
   // Structure check: the correction must stay within the motion prior's reach
   // (whole-step shifts are relocalisation's business) and most points must agree.
-  const double step_m = relocalising ? (config_.relocalise_step_range + 0.5) * typical_tread_m(map_, config_) : 0.0;
+  const double step_m = relocalising ? (config_.relocalisation.step_range + 0.5) * typical_tread_m(map_, config_.stair) : 0.0;
   const double jump = (reg.pose.t_m - start_pose.t_m).norm();
-  if (reg.inlier_ratio < config_.min_inlier_ratio || jump > config_.max_translation_jump_m + step_m) {
+  if (reg.inlier_ratio < config_.motion.min_inlier_ratio || jump > config_.motion.max_translation_jump_m + step_m) {
     ++rejected_registrations_;
     const std::string why = "registration rejected (inliers " + std::to_string(reg.inlier_ratio) + ", jump " +
                             std::to_string(jump) + " m)";
@@ -214,7 +214,7 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
 // observation (a seed can be a poor frame, and with one pose there is no
 // velocity to predict from): start again from the newer one.
 bool Tracker::reseed(const Observation& obs, const std::string& why) {
-  if (model_.observations_fused > 1 || static_cast<int>(obs.steps.size()) < config_.min_seed_steps) return false;
+  if (model_.observations_fused > 1 || static_cast<int>(obs.steps.size()) < config_.confirmation.min_seed_steps) return false;
   reset();
   model_.direction = direction_.update(obs.direction);
   if (!seed(obs)) return false;
@@ -225,17 +225,18 @@ bool Tracker::reseed(const Observation& obs, const std::string& why) {
 // Merges a registered observation into the map and keeps the pose history of
 // the velocity window.
 void Tracker::accept(const Observation& obs, const Pose4& pose) {
-  merge(map_, observed_steps(obs, pose), pose, config_);
-  reconstruct_occluded_steps(map_, config_);
+  merge(map_, observed_steps(obs, pose), pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
+  reconstruct_occluded_steps(map_, config_.reconstruction, config_.stair, config_.confirmation.min_confirmations,
+                             config_.merge.max_model_steps);
   accepted_.emplace_back(obs.source_utime, pose);
   odometry_.forget_before(obs.source_utime);
-  while (accepted_.size() > 2 && seconds(obs.source_utime - accepted_[1].first) >= config_.velocity_window_s)
+  while (accepted_.size() > 2 && seconds(obs.source_utime - accepted_[1].first) >= config_.motion.velocity_window_s)
     accepted_.pop_front();
   ++model_.observations_fused;
 }
 
 void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid) {
-  fill_model(map_, pose, camera_valid, obs.camera.gravity_rotation, config_, model_);
+  fill_model(map_, pose, camera_valid, obs.camera.gravity_rotation, config_.confirmation, config_.stair, model_);
 }
 
 }  // namespace stairs

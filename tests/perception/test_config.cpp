@@ -32,7 +32,7 @@ std::string load_error(const std::string& text) {
 TEST(PerceptionConfig, LoadsKnownKeysOfTheSectionedFile) {
   const PerceptionConfig c = load_perception_config(write_temp(
       R"({"perception": {"normals": {"grid_cell_px": 2, "smooth": false}, "stair": {"riser_max_m": 0.21}},
-          "tracker": {"min_confirmations": 3}})"));
+          "tracker": {"confirmation": {"min_confirmations": 3}}})"));
   EXPECT_EQ(c.normals.grid_cell_px, 2);
   EXPECT_FLOAT_EQ(c.stair.riser_max_m, 0.21f);
   EXPECT_FALSE(c.normals.smooth);

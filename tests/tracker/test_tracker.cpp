@@ -197,8 +197,8 @@ TEST(Tracker, ALogReplayedTwiceIsTrackedBothTimes) {
 
 TEST(Tracker, EmptyObservationsLoseThenResetTheModel) {
   TrackerConfig c;
-  c.lost_after_s = 0.5;
-  c.reset_after_s = 2.0;
+  c.lifecycle.lost_after_s = 0.5;
+  c.lifecycle.reset_after_s = 2.0;
   ObservationMaker maker(kStair, 6);
   Tracker tracker(c);
   const auto cams = walk(kStair, true, 0.6, 30.0);
@@ -251,33 +251,38 @@ TEST(TrackerConfig, LoadsTheTrackerSectionAndNamesKeysAndRanges) {
     }
     return std::string();
   };
-  std::ofstream(path) << R"({"tracker": {"reset_after_s": 3.5, "min_confirmations": 3},
+  std::ofstream(path) << R"({"tracker": {"lifecycle": {"reset_after_s": 3.5}, "confirmation": {"min_confirmations": 3}},
                              "perception": {"stair": {"min_steps": 3}}})";
   const TrackerConfig c = load_tracker_config(path);
-  EXPECT_DOUBLE_EQ(c.reset_after_s, 3.5);
-  EXPECT_EQ(c.min_confirmations, 3);
-  EXPECT_DOUBLE_EQ(c.icp_max_distance_m, 1.0);
-  EXPECT_NE(error(R"({"tracker": {"reset_after_seconds": 3.5}})").find("unknown key 'tracker.reset_after_seconds'"),
+  EXPECT_DOUBLE_EQ(c.lifecycle.reset_after_s, 3.5);
+  EXPECT_EQ(c.confirmation.min_confirmations, 3);
+  EXPECT_DOUBLE_EQ(c.registration.icp_max_distance_m, 1.0);
+  EXPECT_NE(error(R"({"tracker": {"lifecycle": {"reset_after_seconds": 3.5}}})")
+                .find("unknown key 'tracker.lifecycle.reset_after_seconds'"),
             std::string::npos);
-  EXPECT_NE(error(R"({"tracker": {"min_confirmations": "two"}})").find("'tracker.min_confirmations' must be an integer"),
+  EXPECT_NE(error(R"({"tracker": {"confirmation": {"min_confirmations": "two"}}})")
+                .find("'tracker.confirmation.min_confirmations' must be an integer"),
             std::string::npos);
-  EXPECT_NE(error(R"({"tracker": {"icp_min_distance_m": 2.0}})").find("'tracker.icp_min_distance_m' must be at most"),
+  EXPECT_NE(error(R"({"tracker": {"registration": {"icp_min_distance_m": 2.0}}})")
+                .find("'tracker.registration.icp_min_distance_m' must be at most"),
             std::string::npos);
-  EXPECT_NE(error(R"({"tracker": {"min_inlier_ratio": 1.5}})").find("allowed 0..1"), std::string::npos);
-  // A flat file (the layout before the one config file) is refused, naming the key.
+  EXPECT_NE(error(R"({"tracker": {"motion": {"min_inlier_ratio": 1.5}}})").find("allowed 0..1"), std::string::npos);
+  // A flat file (the layout before the one config file) is refused, naming the key; so is
+  // an old flat tracker key, with a hint where the keys went.
   EXPECT_NE(error(R"({"reset_after_s": 3.5})").find("unknown key 'reset_after_s'"), std::string::npos);
+  EXPECT_NE(error(R"({"tracker": {"reset_after_s": 3.5}})").find("grouped by concept"), std::string::npos);
   std::remove(path.c_str());
 }
 
 // A value set in code (stairs-tracker --reset-after-s) is checked against the same range.
 TEST(TrackerConfig, ValidateNamesTheKeyAndTheAllowedRange) {
   TrackerConfig c;
-  c.reset_after_s = -1.0;
+  c.lifecycle.reset_after_s = -1.0;
   try {
     validate(c);
     FAIL() << "a negative reset_after_s was accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("'tracker.reset_after_s' = -1 is out of range: allowed 0.001..86400"),
+    EXPECT_NE(std::string(e.what()).find("'tracker.lifecycle.reset_after_s' = -1 is out of range: allowed 0.001..86400"),
               std::string::npos)
         << e.what();
   }
@@ -332,7 +337,7 @@ TEST(Tracker, ABadSeedThatNoLaterObservationConfirmsIsReplaced) {
 
 TEST(Tracker, ModelStepsAreCapped) {
   TrackerConfig c;
-  c.max_model_steps = 4;
+  c.merge.max_model_steps = 4;
   ObservationMaker maker(kStair, 9);
   Tracker tracker(c);
   const auto cams = walk(kStair, true, 0.6, 30.0);

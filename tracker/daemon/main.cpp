@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
   stairs::TrackerConfig config;
   try {
     config = stairs::load_tracker_config(opts.get("config"));
-    if (opts.has("reset-after-s")) config.reset_after_s = opts.get_double("reset-after-s");
+    if (opts.has("reset-after-s")) config.lifecycle.reset_after_s = opts.get_double("reset-after-s");
     stairs::validate(config);
   } catch (const std::exception& e) {
     std::cerr << "stairs-tracker: " << e.what() << "\n";
