@@ -4,6 +4,7 @@
 
 #include "perception/region_growing.hpp"
 
+#include <cmath>
 #include <vector>
 
 namespace stairs {
@@ -35,6 +36,25 @@ struct PlaneSet {
 // caps.max_planes, with point samples of at most caps.max_*_points.
 PlaneSet plane_geometry(const NormalGrid& grid, const std::vector<Segment>& segments,
                         const Eigen::Matrix3f& gravity, const PlaneGeometryConfig& cfg, const OutputConfig& caps);
+
+// The one riser search of steps and reconstruction: the segmented riser whose
+// face (s_mean) lies within [s_lo, s_hi] and whose extent satisfies `fits`,
+// nearest to s_ref; -1 if none.
+template <class Fits>
+int find_riser(const PlaneSet& ps, float s_lo, float s_hi, float s_ref, Fits fits) {
+  int best = -1;
+  float best_d = 0.0f;
+  for (size_t i = 0; i < ps.planes.size(); ++i) {
+    const PlaneExtent& e = ps.extents[i];
+    if (ps.planes[i].kind != PlaneKind::Riser || e.s_mean < s_lo || e.s_mean > s_hi || !fits(e)) continue;
+    const float d = std::abs(e.s_mean - s_ref);
+    if (best < 0 || d < best_d) {
+      best_d = d;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
 
 // At most max_points of `cells`, spatially even on the image grid.
 std::vector<int> grid_subsample(const NormalGrid& grid, const std::vector<int>& cells, int max_points);

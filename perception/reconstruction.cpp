@@ -13,14 +13,10 @@ namespace {
 // which spans upwards (above = true) or downwards from height z (within
 // contact_m) by more than min_span_m.
 int riser_at(const PlaneSet& ps, float s_lo, float s_hi, float z, bool above, float min_span_m, float contact_m) {
-  for (size_t i = 0; i < ps.planes.size(); ++i) {
-    const PlaneExtent& e = ps.extents[i];
-    if (ps.planes[i].kind != PlaneKind::Riser || e.s_mean < s_lo || e.s_mean > s_hi) continue;
-    if (above ? std::abs(e.z_min - z) < contact_m && e.z_max > z + min_span_m
-              : std::abs(e.z_max - z) < contact_m && e.z_min < z - min_span_m)
-      return static_cast<int>(i);
-  }
-  return -1;
+  return find_riser(ps, s_lo, s_hi, 0.5f * (s_lo + s_hi), [&](const PlaneExtent& e) {
+    return above ? std::abs(e.z_min - z) < contact_m && e.z_max > z + min_span_m
+                 : std::abs(e.z_max - z) < contact_m && e.z_min < z - min_span_m;
+  });
 }
 
 // The horizontal plane at a riser's foot: level with its bottom, reaching it

@@ -50,26 +50,6 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   return levels;
 }
 
-namespace {
-
-// The segmented riser whose face lies at the nosing line, spanning the rise.
-int find_riser(const PlaneSet& ps, float s, float z_low, float z_high, float max_distance_m) {
-  int best = -1;
-  float best_d = max_distance_m;
-  for (size_t i = 0; i < ps.planes.size(); ++i) {
-    if (ps.planes[i].kind != PlaneKind::Riser) continue;
-    const PlaneExtent& e = ps.extents[i];
-    if (e.z_max < z_low || e.z_min > z_high) continue;
-    const float d = std::abs(e.s_mean - s);
-    if (d < best_d) {
-      best_d = d;
-      best = static_cast<int>(i);
-    }
-  }
-  return best;
-}
-
-}  // namespace
 
 std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, const StairConfig& cfg) {
   std::vector<Step> steps;
@@ -85,7 +65,9 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
     s.tread_plane = tread.plane;
     s.riser_height_m = tread.z - below.z;
     float nosing_s = up ? tread.s_min : tread.s_max;
-    s.riser_plane = find_riser(ps, nosing_s, below.z, tread.z, cfg.riser_at_nosing_m);
+    // The riser whose face lies at the nosing line, spanning the rise.
+    s.riser_plane = find_riser(ps, nosing_s - cfg.riser_at_nosing_m, nosing_s + cfg.riser_at_nosing_m, nosing_s,
+                               [&](const PlaneExtent& e) { return e.z_max >= below.z && e.z_min <= tread.z; });
     // The riser's face is the better estimate: the tread's edge cells are lost at the corner.
     if (s.riser_plane >= 0) nosing_s = ps.extents[s.riser_plane].s_mean;
     s.nosing_m = ps.to_camera(nosing_s, 0.5f * (tread.t_min + tread.t_max), tread.z).cast<double>();
