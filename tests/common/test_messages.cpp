@@ -265,6 +265,30 @@ TEST(Messages, CorruptCountsNeverAllocateBeyondCaps) {
   EXPECT_FALSE(from_lcm(round_trip(m), back, error));
 }
 
+// Found by fuzzing (tests/fuzz/corpus/*/string_length_int_min): lcm-gen's decoders
+// let a negative string length through, and INT_MIN made a 100-byte message copy
+// 2 GB (a segfault). lcmtypes/harden_strings.cmake requires every length >= 1.
+TEST(Messages, ANegativeOrZeroStringLengthIsRejected) {
+  tracker_command_t cmd{};
+  cmd.utime = 1;
+  cmd.command = tracker_command_t::COMMAND_RESET;
+  cmd.reason = "ok";
+  const std::vector<uint8_t> good = encode(cmd);
+  const size_t at = 8 + 8 + 1;  // hash, utime, command: then the reason's int32 length
+  for (uint32_t length : {0x80000000u, 0xFFFFFFFFu, 0u}) {
+    std::vector<uint8_t> bad = good;
+    for (int i = 0; i < 4; ++i) bad[at + i] = static_cast<uint8_t>(length >> (24 - 8 * i));
+    tracker_command_t m;
+    std::string error;
+    EXPECT_FALSE(decode_message(bad.data(), bad.size(), m, error)) << std::hex << length;
+    EXPECT_FALSE(error.empty());
+  }
+  tracker_command_t m;
+  std::string error;
+  ASSERT_TRUE(decode_message(good.data(), good.size(), m, error)) << error;
+  EXPECT_EQ(m.reason, "ok");
+}
+
 TEST(Messages, NaNIsRejected) {
   Observation o = sample_observation();
   o.planes[0].points[3].x() = std::nanf("");
