@@ -148,6 +148,19 @@ class ConfigChecker {
   std::string path_;
 };
 
+// Reads `object` (the config file's `path` object, e.g. "tracker") into a
+// Config: every key checked, `hint` appended to an unknown-key error.
+template <class Config>
+Config read_config(const nlohmann::json& object, const std::string& file, const std::string& path,
+                   const std::string& hint) {
+  Config c;
+  ConfigReader r(object, file, path);
+  r.set_unknown_key_hint(hint);
+  c.visit(r);
+  r.finish();
+  return c;
+}
+
 // The JSON of a config struct (all fields, effective values, in field order).
 template <class Config>
 nlohmann::ordered_json config_to_json(const Config& c) {

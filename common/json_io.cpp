@@ -52,6 +52,23 @@ const json& object_at(const json& array, size_t i, const std::string& what) {
   return array[i];
 }
 
+// Calls f(element, "WHAT<sep>KEY[i]") for each object of parent's array `key`;
+// a missing array is an error when `required`.
+template <class F>
+void for_each_object(const json& parent, const char* key, const std::string& what, const char* sep, bool required,
+                     F f) {
+  const auto arr = parent.find(key);
+  if (arr == parent.end() || (!required && arr->is_null())) {
+    if (required) fail(what, std::string("missing array '") + key + "'");
+    return;
+  }
+  if (!arr->is_array()) fail(what, std::string("'") + key + "' is not an array");
+  for (size_t i = 0; i < arr->size(); ++i) {
+    const std::string w = what + sep + key + "[" + std::to_string(i) + "]";
+    f(object_at(*arr, i, w), w);
+  }
+}
+
 }  // namespace
 
 json to_json(const Intrinsics& K, double depth_scale) {
@@ -124,18 +141,10 @@ GroundTruth ground_truth_from_json(const json& j, const std::string& what) {
   if (!j.is_object()) fail(what, "not a JSON object");
   GroundTruth gt;
   if (auto it = j.find("scene"); it != j.end() && it->is_string()) gt.scene = it->get<std::string>();
-  auto flights = j.find("flights");
-  if (flights == j.end() || !flights->is_array()) fail(what, "missing array 'flights'");
-  for (size_t fi = 0; fi < flights->size(); ++fi) {
-    const std::string wf = what + ": flights[" + std::to_string(fi) + "]";
-    const json& jf = object_at(*flights, fi, wf);
+  for_each_object(j, "flights", what, ": ", true, [&](const json& jf, const std::string& wf) {
     Flight f;
     if (auto w = optional_number(jf, "width_m", wf)) f.width_m = *w;
-    auto steps = jf.find("steps");
-    if (steps == jf.end() || !steps->is_array()) fail(wf, "missing array 'steps'");
-    for (size_t si = 0; si < steps->size(); ++si) {
-      const std::string ws = wf + ".steps[" + std::to_string(si) + "]";
-      const json& js = object_at(*steps, si, ws);
+    for_each_object(jf, "steps", wf, ".", true, [&](const json& js, const std::string& ws) {
       Step s;
       s.riser_height_m = optional_number(js, "riser_height_m", ws);
       s.tread_depth_m = optional_number(js, "tread_depth_m", ws);
@@ -146,33 +155,28 @@ GroundTruth ground_truth_from_json(const json& j, const std::string& what) {
       if (auto w = optional_number(js, "width_m", ws)) s.width_m = *w;
       if (auto n = numbers(js, "nosing_m", 2, ws)) s.nosing_m = {(*n)[0], 0.0, (*n)[1]};
       f.steps.push_back(s);
-    }
+    });
     gt.flights.push_back(std::move(f));
-  }
-  if (auto frames = j.find("frames"); frames != j.end()) {
-    if (!frames->is_array()) fail(what, "'frames' is not an array");
-    for (size_t i = 0; i < frames->size(); ++i) {
-      const std::string wf = what + ": frames[" + std::to_string(i) + "]";
-      const json& jf = object_at(*frames, i, wf);
-      GroundTruthFrame fr;
-      fr.timestamp = number(jf, "timestamp", wf);
-      fr.pitch_deg = number(jf, "pitch_deg", wf);
-      fr.roll_deg = number(jf, "roll_deg", wf);
-      fr.height_m = number(jf, "height_m", wf);
-      fr.distance_m = optional_number(jf, "distance_m", wf);
-      if (auto p = numbers(jf, "position_m", 3, wf)) fr.position_m = {(*p)[0], (*p)[1], (*p)[2]};
-      if (auto q = numbers(jf, "quaternion_wxyz", 4, wf)) fr.orientation = Eigen::Quaterniond((*q)[0], (*q)[1], (*q)[2], (*q)[3]);
-      if (auto v = jf.find("visible_steps"); v != jf.end() && !v->is_null()) {
-        if (!v->is_array()) fail(wf, "'visible_steps' is not an array");
-        for (const json& k : *v) {
-          if (!k.is_number_integer() || k.get<int64_t>() < 0 || k.get<int64_t>() > 32767)
-            fail(wf, "'visible_steps' holds a value that is no step index (0..32767)");
-          fr.visible_steps.push_back(k.get<int>());
-        }
+  });
+  for_each_object(j, "frames", what, ": ", false, [&](const json& jf, const std::string& wf) {
+    GroundTruthFrame fr;
+    fr.timestamp = number(jf, "timestamp", wf);
+    fr.pitch_deg = number(jf, "pitch_deg", wf);
+    fr.roll_deg = number(jf, "roll_deg", wf);
+    fr.height_m = number(jf, "height_m", wf);
+    fr.distance_m = optional_number(jf, "distance_m", wf);
+    if (auto p = numbers(jf, "position_m", 3, wf)) fr.position_m = {(*p)[0], (*p)[1], (*p)[2]};
+    if (auto q = numbers(jf, "quaternion_wxyz", 4, wf)) fr.orientation = Eigen::Quaterniond((*q)[0], (*q)[1], (*q)[2], (*q)[3]);
+    if (auto v = jf.find("visible_steps"); v != jf.end() && !v->is_null()) {
+      if (!v->is_array()) fail(wf, "'visible_steps' is not an array");
+      for (const json& k : *v) {
+        if (!k.is_number_integer() || k.get<int64_t>() < 0 || k.get<int64_t>() > 32767)
+          fail(wf, "'visible_steps' holds a value that is no step index (0..32767)");
+        fr.visible_steps.push_back(k.get<int>());
       }
-      gt.frames.push_back(std::move(fr));
     }
-  }
+    gt.frames.push_back(std::move(fr));
+  });
   return gt;
 }
 

@@ -33,12 +33,10 @@ void check_consistency(const PerceptionConfig& c, const std::string& file) {
 }  // namespace
 
 PerceptionConfig perception_config_from_json(const nlohmann::json& object, const std::string& file) {
-  PerceptionConfig c;
-  ConfigReader r(object, file, "perception");
-  r.set_unknown_key_hint(" (perception keys are grouped by stage, e.g. 'perception.stair.riser_min_m': "
-                         "see config/default.json or --print-config)");
-  c.visit(r);
-  r.finish();
+  const PerceptionConfig c = read_config<PerceptionConfig>(
+      object, file, "perception",
+      " (perception keys are grouped by stage, e.g. 'perception.stair.riser_min_m': see config/default.json or "
+      "--print-config)");
   check_consistency(c, file);
   return c;
 }

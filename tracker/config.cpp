@@ -21,12 +21,10 @@ void validate(const TrackerConfig& c) {
 }
 
 TrackerConfig tracker_config_from_json(const nlohmann::json& object, const std::string& file) {
-  TrackerConfig c;
-  ConfigReader r(object, file, "tracker");
-  r.set_unknown_key_hint(" (tracker keys are grouped by concept, e.g. 'tracker.lifecycle.reset_after_s': "
-                         "see config/default.json or --print-config)");
-  c.visit(r);
-  r.finish();
+  const TrackerConfig c = read_config<TrackerConfig>(
+      object, file, "tracker",
+      " (tracker keys are grouped by concept, e.g. 'tracker.lifecycle.reset_after_s': see config/default.json or "
+      "--print-config)");
   try {
     validate(c);
   } catch (const std::runtime_error& e) {

@@ -56,24 +56,25 @@ struct Match {
   double residual = 0.0, distance = std::numeric_limits<double>::infinity();
 };
 
-Match nearest_riser(const Profile& p, const Eigen::Vector3d& q) {
+// The nearest face of one family: faces at `at` (risers: x; treads: z), each
+// spanning [lo, hi] along the other axis; q_at and q_along are the point's.
+Match nearest_face(const std::vector<double>& at, const std::vector<double>& lo, const std::vector<double>& hi,
+                   double q_at, double q_along) {
   Match m;
-  for (size_t k = 0; k < p.riser_x.size(); ++k) {
-    const double r = p.riser_x[k] - q.x();
-    const double d = norm2(r, outside(q.z(), p.riser_z_lo[k], p.riser_z_hi[k]));
+  for (size_t k = 0; k < at.size(); ++k) {
+    const double r = at[k] - q_at;
+    const double d = norm2(r, outside(q_along, lo[k], hi[k]));
     if (d < m.distance) m = {r, d};
   }
   return m;
 }
 
+Match nearest_riser(const Profile& p, const Eigen::Vector3d& q) {
+  return nearest_face(p.riser_x, p.riser_z_lo, p.riser_z_hi, q.x(), q.z());
+}
+
 Match nearest_tread(const Profile& p, const Eigen::Vector3d& q) {
-  Match m;
-  for (size_t k = 0; k < p.tread_z.size(); ++k) {
-    const double r = p.tread_z[k] - q.z();
-    const double d = norm2(r, outside(q.x(), p.tread_x_lo[k], p.tread_x_hi[k]));
-    if (d < m.distance) m = {r, d};
-  }
-  return m;
+  return nearest_face(p.tread_z, p.tread_x_lo, p.tread_x_hi, q.z(), q.x());
 }
 
 Eigen::Vector2d nearest_nosing(const Profile& p, const Eigen::Vector3d& q) {
