@@ -49,8 +49,8 @@ int main(int argc, char** argv) {
       if (opts.has("config") || opts.has("resolution"))
         throw std::invalid_argument("--recorded scores what the daemons published: --config and --resolution do not apply");
       stairs::eval::RecordedOptions recorded;
-      recorded.observation_channel = opts.get("observation-channel");
-      recorded.model_channel = opts.get("model-channel");
+      recorded.channels.observation = opts.get("observation-channel");
+      recorded.channels.model = opts.get("model-channel");
       recorded.max_frames = options.max_frames;
       recorded.progress = options.progress;
       result = stairs::eval::score_recorded(opts.positionals().at(0), recorded);

@@ -46,37 +46,44 @@ FrameResult observation_result(const Observation& obs) {
   return f;
 }
 
+// Decodes one recorded message as Msg and hands it with its value to `use`;
+// one that fails to decode or validate counts as rejected.
+template <class Msg, class Value, class Use>
+void take(const LogEvent& ev, int& accepted, int& rejected, Use use) {
+  Msg msg;
+  Value value;
+  std::string error;
+  if (!decode_and_convert(ev.data.data(), ev.data.size(), msg, value, error)) {
+    ++rejected;
+    return;
+  }
+  ++accepted;
+  use(msg, value);
+}
+
 // Pass one: the observations and models of the whole log, and the last model.
 Answers read_answers(const std::string& path, const RecordedOptions& o, RecordedCounts& counts,
                      std::optional<StairModel>& last_model) {
   Answers answers;
   LogReader log(path);
   LogEvent ev;
-  std::string error;
   while (log.next(ev)) {
-    if (ev.channel == o.observation_channel) {
-      stair_observation_t msg;
-      Observation obs;
-      if (!decode_and_convert(ev.data.data(), ev.data.size(), msg, obs, error)) {
-        ++counts.rejected_messages;
-        continue;
-      }
-      ++counts.observations;
-      answer_for(answers, msg.source_utime, false).observation = observation_result(obs);
-    } else if (ev.channel == o.model_channel) {
-      stair_model_t msg;
-      StairModel model;
-      if (!decode_and_convert(ev.data.data(), ev.data.size(), msg, model, error)) {
-        ++counts.rejected_messages;
-        continue;
-      }
-      ++counts.models;
-      Answer& a = answer_for(answers, msg.source_utime, true);
-      a.tracked_steps = steps_from_camera(model);
-      a.tracked_camera = tracked_camera_of(model);
-      a.tracker_ms = model.update_latency_ms;
-      model.planes.clear();  // the report and the JSON hold steps only
-      last_model = std::move(model);
+    if (ev.channel == o.channels.observation) {
+      take<stair_observation_t, Observation>(ev, counts.observations, counts.rejected_messages,
+                                             [&](const stair_observation_t& msg, Observation& obs) {
+                                               answer_for(answers, msg.source_utime, false).observation =
+                                                   observation_result(obs);
+                                             });
+    } else if (ev.channel == o.channels.model) {
+      take<stair_model_t, StairModel>(ev, counts.models, counts.rejected_messages,
+                                      [&](const stair_model_t& msg, StairModel& model) {
+                                        Answer& a = answer_for(answers, msg.source_utime, true);
+                                        a.tracked_steps = steps_from_camera(model);
+                                        a.tracked_camera = tracked_camera_of(model);
+                                        a.tracker_ms = model.update_latency_ms;
+                                        model.planes.clear();  // the report and the JSON hold steps only
+                                        last_model = std::move(model);
+                                      });
     }
   }
   return answers;
@@ -91,10 +98,10 @@ RunResult score_recorded(const std::string& path, const RecordedOptions& options
   RecordedCounts& counts = *r.recorded;
   Answers answers = read_answers(path, options, counts, r.model);
   if (counts.observations == 0)
-    throw std::runtime_error(path + ": no valid message on " + options.observation_channel +
+    throw std::runtime_error(path + ": no valid message on " + options.channels.observation +
                              ": nothing the live chain published was recorded (drop --recorded to run perception)");
 
-  auto source = open_frame_source(path, options.depth_channel, options.truth_channel);
+  auto source = open_frame_source(path, options.channels.depth, options.channels.truth);
   ProgressBar bar(options.progress);
   SourceFrame sf;
   while (source->next(sf)) {
@@ -128,7 +135,7 @@ RunResult score_recorded(const std::string& path, const RecordedOptions& options
   }
   r.frames_invalid = static_cast<int>(source->invalid());
   if (r.frames_processed == 0)
-    throw std::runtime_error(path + ": no valid depth frames on " + options.depth_channel +
+    throw std::runtime_error(path + ": no valid depth frames on " + options.channels.depth +
                              " (a recorded run is scored against the frames it was given)");
   if (source->ground_truth())
     r.score = score_run(r.frames, r.model ? &r.model->flights : nullptr, *source->ground_truth());

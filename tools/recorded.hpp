@@ -3,6 +3,7 @@
 // the tracker again. A frame the live chain never answered counts as missed.
 #pragma once
 
+#include "common/channels.hpp"
 #include "tools/result_json.hpp"
 
 #include <string>
@@ -10,10 +11,7 @@
 namespace stairs::eval {
 
 struct RecordedOptions {
-  std::string depth_channel = "STAIRS_DEPTH";
-  std::string truth_channel = "STAIRS_GROUND_TRUTH";
-  std::string observation_channel = "STAIRS_OBSERVATION";
-  std::string model_channel = "STAIRS_MODEL";
+  ChainChannels channels;
   int max_frames = 0;     // frames to score, 0 = all
   bool progress = false;  // progress bar on stderr
 };

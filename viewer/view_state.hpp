@@ -2,6 +2,7 @@
 // the last depth frames, the latest observation, model and ground truth.
 #pragma once
 
+#include "common/channels.hpp"
 #include "common/types.hpp"
 #include "viewer/frame_history.hpp"
 #include "viewer/layout.hpp"
@@ -12,12 +13,7 @@
 
 namespace stairs::viewer {
 
-struct Channels {
-  std::string depth = "STAIRS_DEPTH";
-  std::string observation = "STAIRS_OBSERVATION";
-  std::string model = "STAIRS_MODEL";
-  std::string truth = "STAIRS_GROUND_TRUTH";
-};
+using Channels = ChainChannels;
 
 enum class MessageKind { Unknown, Depth, Observation, Model, Truth };
 
