@@ -18,6 +18,8 @@ struct StairPriorConfig {
   double landing_min_depth_m = 0.5;     // m; a deeper tread is a landing
   double typical_riser_fraction = 0.3;  // of the typical riser: consecutive steps this regular give the
                                         // typical tread (a step missing between them would double the rise)
+  double riser_bracket_fraction = 0.5;  // of default_riser_m: height steps this close to it count as rises
+                                        // (half a riser off is a missing or a false step, not a rise)
 
   template <class V>
   void visit(V& v) {
@@ -25,6 +27,7 @@ struct StairPriorConfig {
     v("default_tread_m", default_tread_m, 0.01, 2.0);
     v("landing_min_depth_m", landing_min_depth_m, 0.0, 10.0);
     v("typical_riser_fraction", typical_riser_fraction, 0.01, 1.0);
+    v("riser_bracket_fraction", riser_bracket_fraction, 0.01, 1.0);
   }
 };
 
@@ -124,6 +127,8 @@ struct MergeConfig {
   int max_plane_points = 1024;          // model points per plane (ICP rejections only)
   int max_model_steps = 128;            // cap on the model's steps (memory and message size)
   double monotonic_tolerance_m = 0.04;  // m; a new step must rise with x within this
+  double min_rise_fraction = 0.5;       // of the typical riser: a new step lies at least this far above the
+                                        // step before it and below the one after (else it is the same level)
 
   template <class V>
   void visit(V& v) {
@@ -133,6 +138,7 @@ struct MergeConfig {
     v("max_plane_points", max_plane_points, 0, limits::kPlanePoints);
     v("max_model_steps", max_model_steps, 1, limits::kModelPlanes / 2);  // a riser and a tread plane each
     v("monotonic_tolerance_m", monotonic_tolerance_m, 0.0, 1.0);
+    v("min_rise_fraction", min_rise_fraction, 0.0, 1.0);
   }
 };
 

@@ -62,9 +62,9 @@ void update(MapStep& m, const ObservedStep& o, const Pose4& pose, const MergeCon
 }
 
 // A new step must keep the stair rising: above every step before it and below
-// every step after it, by at least half a riser.
+// every step after it, by at least min_rise_fraction of a riser.
 bool fits_between(const StairMap& map, size_t at, const ObservedStep& o, double riser, const MergeConfig& c) {
-  const double need = 0.5 * riser - c.monotonic_tolerance_m;
+  const double need = c.min_rise_fraction * riser - c.monotonic_tolerance_m;
   if (at > 0 && o.z() - map.steps[at - 1].z() < need) return false;
   if (at < map.steps.size() && map.steps[at].z() - o.z() < need) return false;
   return true;

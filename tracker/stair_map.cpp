@@ -3,6 +3,7 @@
 #include "tracker/config.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace stairs {
 
@@ -21,7 +22,7 @@ double typical_riser_m(const StairMap& map, const StairPriorConfig& c) {
     if (s.riser_height_m.known()) r.push_back(s.riser_height_m.value);
   for (size_t i = 1; i < map.steps.size(); ++i) {
     const double dz = map.steps[i].z() - map.steps[i - 1].z();
-    if (dz > 0.5 * c.default_riser_m && dz < 1.5 * c.default_riser_m) r.push_back(dz);
+    if (std::abs(dz - c.default_riser_m) < c.riser_bracket_fraction * c.default_riser_m) r.push_back(dz);
   }
   return r.empty() ? c.default_riser_m : median(r);
 }
