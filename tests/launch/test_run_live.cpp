@@ -1,6 +1,7 @@
 // scripts/run-live as a user runs it: a log through lcm-logplayer, perception
 // and the tracker as real processes, lcm-logger recording, all on one URL;
 // then the recording scored as it ran. And Ctrl-C stops every program.
+#include "tests/support/daemon_process.hpp"
 #include "tests/support/multicast.hpp"
 #include "tools/recorded.hpp"
 #include "tools/replay.hpp"
@@ -38,19 +39,6 @@ pid_t launch(const std::vector<std::string>& args) {
   return pid;
 }
 
-// Waits for pid up to `timeout_s`; its exit status, or -1 on timeout (then it is killed).
-int wait_for(pid_t pid, double timeout_s) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  int status = 0;
-  while (std::chrono::steady_clock::now() < end) {
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  kill(pid, SIGKILL);
-  waitpid(pid, &status, 0);
-  return -1;
-}
-
 // A program runs whose command line matches the regex `pattern`. Its first
 // character goes in brackets so that the shell running pgrep, whose own command
 // line holds the pattern, does not match it.
@@ -64,7 +52,7 @@ TEST(RunLive, ALogThroughTheLiveChainGivesAnObservationAndAModelForEveryFrame) {
   if (!test::ensure_multicast_loopback(u)) GTEST_SKIP() << test::kMulticastSkipReason;
   const std::string rec = std::string(STAIRS_BINARY_DIR) + "/run_live_test.lcmlog";
   std::filesystem::remove(rec);
-  ASSERT_EQ(wait_for(launch({"--log", kLog, "--lcm-url", u, "--record", rec}), 60.0), 0);
+  ASSERT_EQ(test::wait_exit(launch({"--log", kLog, "--lcm-url", u, "--record", rec}), 60.0), 0);
 
   const eval::RunResult live = eval::score_recorded(rec, eval::RecordedOptions{});
   const eval::RunResult offline = eval::replay(kLog, eval::ReplayOptions{});
@@ -90,14 +78,14 @@ TEST(RunLive, CtrlCStopsEveryProgramOfTheChain) {
   const std::string group = "239.255.76.67:7683";  // in the command line of every program of this chain
   EXPECT_TRUE(running_with("stairs-perception.*" + group)) << "the chain did not start";
   kill(pid, SIGINT);
-  EXPECT_EQ(wait_for(pid, 10.0), 130);
+  EXPECT_EQ(test::wait_exit(pid, 10.0), 130);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   for (const char* p : {"stairs-perception", "stairs-tracker", "stairs-sim"})
     EXPECT_FALSE(running_with(std::string(p) + ".*" + group)) << p << " still runs";
 }
 
 TEST(RunLive, AMissingLogIsOneLineNamingIt) {
-  EXPECT_EQ(wait_for(launch({"--log", "/nonexistent/run.lcmlog"}), 10.0), 1);
+  EXPECT_EQ(test::wait_exit(launch({"--log", "/nonexistent/run.lcmlog"}), 10.0), 1);
 }
 
 }  // namespace

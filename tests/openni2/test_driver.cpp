@@ -1,6 +1,7 @@
 // stairs-openni2 as a subprocess: no device -> one line and a non-zero exit;
 // an .oni written by OniWriter -> the same frames out (log and udpm), status
 // on STAIRS_STATUS, a clean stop on SIGTERM.
+#include "tests/support/daemon_process.hpp"
 #include "tests/support/multicast.hpp"
 #include "common/lcm_bridge.hpp"
 #include "common/lcm_log.hpp"
@@ -58,19 +59,6 @@ pid_t spawn(std::vector<std::string> args, const std::string& out_file) {
   return rc == 0 ? pid : -1;
 }
 
-// Exit code, or -1 (after SIGKILL) if it did not end within timeout_s.
-int wait_exit(pid_t pid, double timeout_s) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  int status = 0;
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  kill(pid, SIGKILL);
-  waitpid(pid, &status, 0);
-  return -1;
-}
-
 std::string slurp(const std::string& path) {
   std::ifstream f(path);
   std::stringstream s;
@@ -86,7 +74,7 @@ RunResult run(const std::vector<std::string>& args, double timeout_s = 30) {
   const std::string out = temp_path("out.txt");
   const pid_t pid = spawn(args, out);
   EXPECT_GT(pid, 0);
-  RunResult r{pid > 0 ? wait_exit(pid, timeout_s) : -1, slurp(out)};
+  RunResult r{pid > 0 ? stairs::test::wait_exit(pid, timeout_s) : -1, slurp(out)};
   std::remove(out.c_str());
   return r;
 }
@@ -239,7 +227,7 @@ TEST(OpenNI2Driver, OniOverUdpmFramesUnchanged) {
   ASSERT_GT(pid, 0);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   while (sub.frames.size() < frames.size() && std::chrono::steady_clock::now() < deadline) lcm.handleTimeout(50);
-  EXPECT_EQ(wait_exit(pid, 10), 0) << slurp(out);
+  EXPECT_EQ(stairs::test::wait_exit(pid, 10), 0) << slurp(out);
   EXPECT_EQ(sub.invalid, 0);
   expect_same_frames(sub.frames, frames);
   std::remove(oni.c_str());
@@ -265,7 +253,7 @@ TEST(OpenNI2Driver, LoopingPlaybackReportsStatusAndStopsCleanlyOnSigterm) {
   EXPECT_TRUE(std::filesystem::exists(log + ".partial"));
   EXPECT_FALSE(std::filesystem::exists(log));
   kill(pid, SIGTERM);
-  EXPECT_EQ(wait_exit(pid, 10), 0) << slurp(out);
+  EXPECT_EQ(stairs::test::wait_exit(pid, 10), 0) << slurp(out);
   ASSERT_FALSE(sub.status.empty()) << "no daemon_status_t in 2.5 s";
   EXPECT_GT(sub.status.back().published, 10) << "looping did not go past the end";
   EXPECT_GT(sub.status.back().rate_hz, 10.0f);
@@ -369,8 +357,8 @@ TEST(OpenNI2Driver, OniThroughPerception) {
   const auto drain = std::chrono::steady_clock::now() + std::chrono::seconds(3);
   while (std::chrono::steady_clock::now() < drain) lcm.handleTimeout(50);
   kill(ppid, SIGTERM);
-  EXPECT_EQ(wait_exit(ppid, 10), 0) << slurp(perception_out);
-  if (exit_code == -2) exit_code = wait_exit(pid, 5);
+  EXPECT_EQ(stairs::test::wait_exit(ppid, 10), 0) << slurp(perception_out);
+  if (exit_code == -2) exit_code = stairs::test::wait_exit(pid, 5);
   EXPECT_EQ(exit_code, 0) << slurp(out);
 
   EXPECT_EQ(observations.invalid, 0);
