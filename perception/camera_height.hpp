@@ -12,12 +12,9 @@
 
 namespace stairs {
 
-// The lowest surface spanning the point straight beneath, where that is in
-// view. Else the level before a detected flight's first edge, if it reaches
-// the image's lowest row, is the lowest there and shows more than the
-// longest run (+ run_tolerance_m): then no tread's front hides out of view.
-// Otherwise unknown (the tracker's model knows). Levels within
-// stair.same_level_m are one; the fallback run is stair.tread_max_m.
+// Height over the lowest surface spanning the point straight beneath, when in view; else over the
+// level before the flight if it shows more than the longest run (no tread hides below the image).
+// Otherwise unknown: the tracker's model knows better (issue 15: unknown beats wrong).
 std::optional<double> camera_height(const PlaneSet& ps, const std::vector<Step>& steps, Direction direction,
                                     const Intrinsics& K, double pitch_deg, const CameraHeightConfig& cfg,
                                     const StairConfig& stair, float run_tolerance_m);

@@ -25,6 +25,7 @@ void check_consistency(const PerceptionConfig& c, const std::string& file) {
   const VerificationConfig& v = c.verification;
   require(v.rise_outlier_m >= v.rise_tolerance_m, "verification.rise_outlier_m",
           "at least verification.rise_tolerance_m");
+  require(v.end_probes_through <= v.end_probes, "verification.end_probes_through", "at most verification.end_probes");
   require(v.run_outlier_m >= v.run_tolerance_m, "verification.run_outlier_m", "at least verification.run_tolerance_m");
   require(c.imu.plane_agreement_deg <= c.imu.max_disagreement_deg, "imu.plane_agreement_deg",
           "at most imu.max_disagreement_deg");
@@ -41,9 +42,17 @@ PerceptionConfig perception_config_from_json(const nlohmann::json& object, const
   return c;
 }
 
-PerceptionConfig load_perception_config(const std::string& path) {
-  return perception_config_from_json(read_config_file(path).perception, path);
+PerceptionConfig perception_config_from_sections(const ConfigSections& sections, const std::string& file) {
+  PerceptionConfig c = perception_config_from_json(sections.perception, file);
+  c.stair.landing_min_depth_m = static_cast<float>(stair_definition_from_json(sections.stair, file).landing_min_depth_m);
+  return c;
 }
+
+PerceptionConfig load_perception_config(const std::string& path) {
+  return perception_config_from_sections(read_config_file(path), path);
+}
+
+StairDefinition stair_definition(const PerceptionConfig& c) { return {c.stair.landing_min_depth_m}; }
 
 nlohmann::ordered_json to_json(const PerceptionConfig& c) { return config_to_json(c); }
 

@@ -2,7 +2,9 @@
 // Pixel counts are given for 640x480 and scaled with the frame's resolution.
 #pragma once
 
+#include "common/config_file.hpp"
 #include "common/limits.hpp"
+#include "common/stair_definition.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -34,6 +36,8 @@ struct VerificationConfig {
   int min_decided_probes = 6;         // fewer decided probes (occluded, no depth, off image) = no verdict
   float border_margin_px = 8.0f;      // px at 640x480; a tread end this close to the image border is cut
   float end_offset_m = 0.05f;         // m; a tread's end is open when the view passes on this far beyond it
+  int end_probes = 3;                 // probes beyond each end, evenly along the tread's run
+  int end_probes_through = 2;         // of them that must see through: a majority, one noisy cell is no side
   float min_width_ratio = 0.6f;       // narrower / wider tread width when the narrower one is uncut
   float min_lateral_overlap = 0.5f;   // of the narrower tread's width, consecutive treads overlap
   float max_riser_yaw_spread_deg = 8.0f;  // deg; segmented risers of one flight are this parallel
@@ -66,6 +70,8 @@ struct VerificationConfig {
     v("min_decided_probes", min_decided_probes, 1, 4096);
     v("border_margin_px", border_margin_px, 0.0f, 320.0f);
     v("end_offset_m", end_offset_m, 0.0f, 1.0f);
+    v("end_probes", end_probes, 1, 16);
+    v("end_probes_through", end_probes_through, 1, 16);
     v("min_width_ratio", min_width_ratio, 0.0f, 1.0f);
     v("min_lateral_overlap", min_lateral_overlap, 0.0f, 1.0f);
     v("max_riser_yaw_spread_deg", max_riser_yaw_spread_deg, 0.01f, 90.0f);
@@ -303,7 +309,8 @@ struct StairConfig {
   float din_tolerance = 0.4f;        // relative tolerance on every DIN bound (old and odd flights)
   float level_max_spread_of_rise = 0.5f;  // of the rise: a level's heights reach at most this far towards
                                           // the next (a tread is level within noise; a ramp is not)
-  float landing_min_depth_m = 0.50f;  // m; a tread deeper than this is a landing
+  float landing_min_depth_m = static_cast<float>(StairDefinition{}.landing_min_depth_m);  // m; not a key here: the config
+                                     // file's top-level stair.landing_min_depth_m, shared with the tracker
   float min_step_width_m = 0.3f;     // m; narrower horizontal planes (chair seats) are no treads
   float max_lateral_gap_m = 0.5f;    // m; consecutive treads must overlap laterally up to this gap
   float min_riser_seen_fraction = 0.1f;  // of the median rise: a riser standing on the last
@@ -328,7 +335,6 @@ struct StairConfig {
     v("step_rule_max_m", step_rule_max_m, 0.0f, 4.0f);
     v("din_tolerance", din_tolerance, 0.0f, 1.0f);
     v("level_max_spread_of_rise", level_max_spread_of_rise, 0.01f, 1.0f);
-    v("landing_min_depth_m", landing_min_depth_m, 0.0f, 10.0f);
     v("min_step_width_m", min_step_width_m, 0.0f, 10.0f);
     v("max_lateral_gap_m", max_lateral_gap_m, 0.0f, 10.0f);
     v("min_riser_seen_fraction", min_riser_seen_fraction, 0.0f, 1.0f);
@@ -394,8 +400,12 @@ struct PerceptionConfig {
 // on an unknown key, a wrong type, a value out of range or values that
 // contradict each other (riser_min_m above riser_max_m).
 PerceptionConfig perception_config_from_json(const nlohmann::json& object, const std::string& file);
-// The "perception" object of the config file at `path` (common/config_file.hpp); "" = defaults.
+// The config file's "perception" object with the shared "stair" object applied.
+PerceptionConfig perception_config_from_sections(const ConfigSections& sections, const std::string& file);
+// The config file at `path` (common/config_file.hpp); "" = defaults.
 PerceptionConfig load_perception_config(const std::string& path);
+// The shared "stair" object this config was given (--print-config).
+StairDefinition stair_definition(const PerceptionConfig& c);
 // The effective values, as the config file's "perception" object (--print-config).
 nlohmann::ordered_json to_json(const PerceptionConfig& c);
 

@@ -19,11 +19,8 @@ struct JumpEdge {
   Edge edge;  // the observation's edge (source DepthJump, type Convex)
 };
 
-// Near sides of the jumps between vertically neighbouring cells (the farther
-// cell above it in the image), rotated by `gravity` (optical -> gravity-aligned)
-// and grouped by height; RANSAC fits a line to each group. Lines that are not
-// horizontal, not across the stair axis (`yaw_rad`) or shorter than
-// `min_length_m` (the narrowest step) are dropped. Sorted by height, highest first.
+// Nosings seen from above (thesis 3.4): near sides of depth jumps, grouped by height, a RANSAC
+// line per group; kept if horizontal, across the stair axis and at least `min_length_m`. Highest first.
 std::vector<JumpEdge> depth_jump_edges(const NormalGrid& grid, const Eigen::Matrix3f& gravity, float yaw_rad,
                                        const DepthJumpEdgesConfig& cfg, float min_length_m);
 

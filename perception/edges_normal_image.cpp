@@ -110,12 +110,8 @@ void fit(Line& l, const Eigen::Vector3f& axis, int cell_px) {
   l.z = mid.z();
 }
 
-// The step edge under a Hough segment (grid coordinates): the surfaces in the
-// strips on either side (mean normal and point) meet in the edge, and the
-// cells under the segment give its direction and extent. Nothing when a side
-// is unmeasured, the surface bends too little, the edge is out of range, or
-// the surfaces' intersection or the cells' line is not horizontal and across
-// the stair axis.
+// The step edge under a Hough segment: the meet of the surfaces in the strips on either side, its
+// extent from the cells under it. Nothing unless both sides are measured, bend, and the edge is level.
 std::optional<Line> back_project(const NormalGrid& g, const Eigen::Matrix3f& R, const cv::Vec4i& seg,
                                  const Eigen::Vector3f& axis, const NormalImageEdgesConfig& cfg) {
   const Eigen::Vector2f a(seg[0], seg[1]), b(seg[2], seg[3]);
@@ -193,12 +189,8 @@ void absorb(Line& into, const Line& other) {
   into.meet_sum += other.meet_sum;
 }
 
-// Thesis "merge lines that are close and with similar orientation": a
-// histogram over type, direction, distance and height. Strongest first, a line
-// merges into the strongest kept line of its own or a neighbouring bin that is
-// closer than a bin in every key; else it is kept. Kept lines compare with the
-// keys of their strongest segment, so merges do not chain across unrelated
-// lines (the thesis' locking). Merged lines are fitted anew.
+// Thesis 3.4.1 "merge lines that are close and with similar orientation": strongest first, a line joins
+// a kept line within a bin in type, direction, distance and height; keys stay the kept line's (no chaining).
 std::vector<Line> merge_lines(std::vector<Line> lines, const Eigen::Vector3f& axis, int cell_px,
                               const NormalImageEdgesConfig& cfg) {
   auto by_support = [](const Line& a, const Line& b) { return a.edge.support > b.edge.support; };

@@ -76,9 +76,11 @@ CameraPose pose_from_up(const Eigen::Vector3f& up_optical) {
   pose.valid = true;
   pose.pitch_deg = std::asin(std::clamp(up.z(), -1.0, 1.0)) * 180.0 / M_PI;
   pose.roll_deg = std::atan2(-up.x(), -up.y()) * 180.0 / M_PI;
-  // Forward = optical axis levelled; looking straight down, the image top.
+  // Forward = optical axis levelled; within ~6 deg of straight down (a levelled
+  // axis shorter than sin 6 deg has no reliable heading), the image top.
+  constexpr double kMinLevelledAxis = 0.1;
   Eigen::Vector3d fwd = Eigen::Vector3d::UnitZ() - up.z() * up;
-  if (fwd.norm() < 0.1) fwd = -Eigen::Vector3d::UnitY() + up.y() * up;
+  if (fwd.norm() < kMinLevelledAxis) fwd = -Eigen::Vector3d::UnitY() + up.y() * up;
   fwd.normalize();
   Eigen::Matrix3d R;
   R.row(0) = fwd.transpose();

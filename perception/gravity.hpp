@@ -8,12 +8,8 @@
 
 namespace stairs {
 
-// Up direction in the optical frame, or nothing when no plane can be horizontal.
-// Candidates are segment normals within max_tilt of image up (-y); each scores
-// the support of the segments parallel to it; the best one's parallel set
-// gives the support-weighted mean normal. With a prior (the previous frame's
-// up), only candidates within gravity_prior_max_deg of it count; without one
-// there, up is perpendicular to the vertical planes (risers, walls).
+// Up in the optical frame (thesis 3.5): the segment normal near image up with the most parallel
+// support, averaged over that set; near the previous frame's up when given. Nothing if none fits.
 std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const GravityConfig& cfg,
                                            const std::optional<Eigen::Vector3f>& prior = std::nullopt);
 

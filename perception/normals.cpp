@@ -13,14 +13,9 @@ int grid_cell_px(const NormalsConfig& cfg, int image_width) {
 
 namespace {
 
-// Each cell is the mean of its nearest surface: the valid pixels within
-// jump_ratio of its nearest one, back-projected at their mean pixel. Pixels of
-// a farther surface behind a depth edge are left out rather than averaged in
-// (the mean would float between both) or voiding the cell (far treads seen from
-// above are strips a few cells tall, between edges). Half the cell must be on
-// that surface up to cell_valid_fraction_range_m, less beyond (as 1/z): at range
-// the sensor drops many pixels, while near a sparse cell is an edge's flying
-// pixels (on a real Kinect v2 looking steeply down they break up the first riser).
+// Each cell is the mean of its nearest surface (pixels within jump_ratio of its nearest one): a mean
+// across a depth edge would float between surfaces. Near, a sparse cell is flying pixels; at range
+// the sensor drops many, so the valid fraction needed falls as 1/z beyond cell_valid_fraction_range_m.
 void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g) {
   const Intrinsics& K = frame.K;
   const uint16_t lo = static_cast<uint16_t>(std::clamp(cfg.min_depth_m / frame.depth_scale, 1.0, 65535.0));

@@ -167,11 +167,11 @@ bool both_ends_open(const Prober& pr, const PlaneSet& ps, const StepFrame& f, bo
   for (float side : {-1.0f, 1.0f}) {
     Tally t;
     const float t_out = (side < 0 ? f.t_lo : f.t_hi) + side * c.end_offset_m;
-    for (int i = 1; i <= 3; ++i) {
-      const float ds = tread_m * i / 4.0f;
+    for (int i = 1; i <= c.end_probes; ++i) {
+      const float ds = tread_m * static_cast<float>(i) / static_cast<float>(c.end_probes + 1);
       t.add(pr.at(ps.to_camera(up ? f.s + ds : f.s - ds, t_out, f.z)));
     }
-    if (t.through < 2) return false;
+    if (t.through < c.end_probes_through) return false;
   }
   return true;
 }

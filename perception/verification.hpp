@@ -24,12 +24,8 @@ struct Verdict {
   std::string reason;  // empty when every step passed
 };
 
-// Probes the grid (optical frame; `gravity` = optical -> gravity-aligned) for
-// each step's evidence, nearest first; a step that fails a check is dropped
-// with every step beyond it. Widths and nosing lines are in the stair-aligned
-// frame of `planes`. Sets kStepWidthPartial on steps whose width is a lower
-// bound. `max_rise_m`: DIN's highest rise with its tolerance (the grammar's),
-// above which a measured rise is no step.
+// Probes the grid for each step's evidence, nearest first; a failing step is dropped with all
+// beyond it, and a width that is only a lower bound is flagged partial. `max_rise_m`: the grammar's.
 Verdict verify(const NormalGrid& grid, const Intrinsics& K, const Eigen::Matrix3f& gravity, const PlaneSet& planes,
                Direction direction, std::vector<Step>& steps, const VerificationConfig& cfg, float max_rise_m);
 

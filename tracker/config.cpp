@@ -33,8 +33,18 @@ TrackerConfig tracker_config_from_json(const nlohmann::json& object, const std::
   return c;
 }
 
+TrackerConfig tracker_config_from_sections(const ConfigSections& sections, const std::string& file) {
+  TrackerConfig c = tracker_config_from_json(sections.tracker, file);
+  c.stair.landing_min_depth_m = stair_definition_from_json(sections.stair, file).landing_min_depth_m;
+  return c;
+}
+
 TrackerConfig load_tracker_config(const std::string& path) {
-  return tracker_config_from_json(read_config_file(path).tracker, path);
+  return tracker_config_from_sections(read_config_file(path), path);
+}
+
+StairDefinition stair_definition(const TrackerConfig& c) {
+  return {c.stair.landing_min_depth_m};
 }
 
 nlohmann::ordered_json to_json(const TrackerConfig& c) { return config_to_json(c); }

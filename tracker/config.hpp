@@ -3,7 +3,9 @@
 // allowed range and a one-line reason; read only where that concept lives.
 #pragma once
 
+#include "common/config_file.hpp"
 #include "common/limits.hpp"
+#include "common/stair_definition.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -15,7 +17,8 @@ namespace stairs {
 struct StairPriorConfig {
   double default_riser_m = 0.17;        // m; used until the model has measured risers
   double default_tread_m = 0.28;        // m; used until the model has measured treads
-  double landing_min_depth_m = 0.5;     // m; a deeper tread is a landing
+  double landing_min_depth_m = StairDefinition{}.landing_min_depth_m;  // m; not a key here: the config
+                                        // file's top-level stair.landing_min_depth_m, shared with perception
   double typical_riser_fraction = 0.3;  // of the typical riser: consecutive steps this regular give the
                                         // typical tread (a step missing between them would double the rise)
   double riser_bracket_fraction = 0.5;  // of default_riser_m: height steps this close to it count as rises
@@ -25,7 +28,6 @@ struct StairPriorConfig {
   void visit(V& v) {
     v("default_riser_m", default_riser_m, 0.01, 1.0);
     v("default_tread_m", default_tread_m, 0.01, 2.0);
-    v("landing_min_depth_m", landing_min_depth_m, 0.0, 10.0);
     v("typical_riser_fraction", typical_riser_fraction, 0.01, 1.0);
     v("riser_bracket_fraction", riser_bracket_fraction, 0.01, 1.0);
   }
@@ -214,8 +216,12 @@ struct TrackerConfig {
 // std::runtime_error naming `file`, the key and its allowed range on an unknown
 // key, a wrong type, a value out of range or values that contradict each other.
 TrackerConfig tracker_config_from_json(const nlohmann::json& object, const std::string& file);
-// The "tracker" object of the config file at `path` (common/config_file.hpp); "" = defaults.
+// The config file's "tracker" object with the shared "stair" object applied.
+TrackerConfig tracker_config_from_sections(const ConfigSections& sections, const std::string& file);
+// The config file at `path` (common/config_file.hpp); "" = defaults.
 TrackerConfig load_tracker_config(const std::string& path);
+// The shared "stair" object this config was given (--print-config).
+StairDefinition stair_definition(const TrackerConfig& c);
 // The effective values, as the config file's "tracker" object (--print-config).
 nlohmann::ordered_json to_json(const TrackerConfig& c);
 

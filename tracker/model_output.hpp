@@ -19,12 +19,8 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
                 const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
                 const StairPriorConfig& stair, StairModel& out);
 
-// The model's steps as seen from its camera: every flight's steps, bottom to
-// top, with nosings in the camera's gravity-aligned frame (an observation's
-// frame). This is what the tracker knows of the steps around the camera on a
-// frame, including those whose edges perception cannot see (a tread whose
-// front is below the image, a landing whose nosing has passed beneath). Empty
-// when the model's camera is not valid.
+// The model's steps, bottom to top, in its camera's gravity-aligned frame: what the tracker knows
+// around the camera, out of view included. Empty when the camera is not valid.
 std::vector<Step> steps_from_camera(const StairModel& model);
 
 }  // namespace stairs

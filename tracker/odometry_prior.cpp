@@ -5,10 +5,11 @@
 namespace stairs {
 
 double optical_heading_rad(const Eigen::Quaterniond& q) {
+  // Within ~11 deg of vertical (horizontal part < sin 11 deg) the optical axis'
+  // heading is ill-defined; the image's up (-y) then points where the camera faces.
+  constexpr double kMinHorizontalAxis = 0.2;
   Eigen::Vector3d f = q * Eigen::Vector3d::UnitZ();
-  // Within ~11 deg of vertical the optical axis' heading is ill-defined; the
-  // image's up (-y) then points where the camera faces.
-  if (std::hypot(f.x(), f.y()) < 0.2) f = q * -Eigen::Vector3d::UnitY();
+  if (std::hypot(f.x(), f.y()) < kMinHorizontalAxis) f = q * -Eigen::Vector3d::UnitY();
   return std::atan2(f.y(), f.x());
 }
 

@@ -169,12 +169,8 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
     if (thr <= c.icp_min_distance_m) break;
   }
 
-  // Quality: agreement of every plane point with the model at the final pose,
-  // risers and treads each on their own: a slip that fits the treads but puts
-  // the risers beside the model's must not pass on the treads' majority.
-  // Steps beyond the model's ends (before its first riser: below the floor
-  // level) are new, not disagreeing: the ratios are over the points within the
-  // model's extent (at least a quarter of all).
+  // Agreement at the final pose, risers and treads apart (a slip that fits the treads must not pass on
+  // their majority), over the points within the model's extent: steps beyond its ends are new.
   const Eigen::Vector3d& t = reg.pose.t_m;
   const double x_lo = prof.riser_x.front() - c.accept_distance_m, x_hi = prof.tread_x_hi.back() + c.accept_distance_m;
   const double z_hi = prof.tread_z.back() + c.accept_distance_m, z_lo = prof.tread_z.front() - c.accept_distance_m;

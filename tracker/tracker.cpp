@@ -142,11 +142,8 @@ void Tracker::drop_if_lost_long(const Observation& obs, bool with_odometry) {
   model_.direction = direction_.update(obs.direction);
 }
 
-// Constant velocity carries a flight's slope on across a landing; the height
-// over the surface beneath, where perception sees it, does not. But
-// perception's surface beneath is the one at the image's bottom, ahead of the
-// camera: near a flight's end it may be the next level, so a height more than
-// observed_height_max_riser_fraction of a riser off the prior is not taken.
+// Perception's height over the surface beneath corrects the prior's z (constant velocity would carry
+// a flight's slope across a landing), unless it is a riser off: that surface may be the next level.
 Pose4 Tracker::with_observed_height(const Observation& obs, Pose4 pose) const {
   if (!obs.camera.valid || !obs.camera.height_m) return pose;
   const double z = surface_z_m(map_, pose.t_m.x(), config_.stair) + *obs.camera.height_m;

@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
       .add("status-channel", "NAME", "channel of daemon_status_t", "STAIRS_STATUS")
       .add("imu-channel", "NAME", "channel of optional IMU samples (imu_t; config imu.to_camera_* turns them)",
            "STAIRS_IMU")
-      .config_options("\"perception\"")
+      .config_options("\"stair\" and \"perception\"")
       .add("verbose", "", "print the status line once a second even without a terminal");
   opts.parse(argc, argv);
 
@@ -91,7 +91,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (opts.flag("print-config")) {
-    stairs::print_config(std::cout, {{"perception", stairs::to_json(config)}});
+    stairs::print_config(std::cout, {{"stair", stairs::config_to_json(stairs::stair_definition(config))},
+                                     {"perception", stairs::to_json(config)}});
     return 0;
   }
   lcm::LCM lcm(opts.get("lcm-url"));

@@ -68,6 +68,17 @@ TEST(PerceptionConfig, WrongTypeAndRangeNameTheKeyAndTheAllowedRange) {
   EXPECT_THROW(load_perception_config("/nonexistent/perception.json"), std::runtime_error);
 }
 
+// What perception and the tracker share is one top-level key, not a copy in each section.
+TEST(PerceptionConfig, TheLandingDepthIsTheTopLevelStairKey) {
+  const PerceptionConfig c = load_perception_config(write_temp(R"({"stair": {"landing_min_depth_m": 0.8}})"));
+  EXPECT_FLOAT_EQ(c.stair.landing_min_depth_m, 0.8f);
+  EXPECT_FLOAT_EQ(stair_definition(c).landing_min_depth_m, 0.8f);
+  const std::string moved = load_error(R"({"perception": {"stair": {"landing_min_depth_m": 0.8}}})");
+  EXPECT_NE(moved.find("unknown key 'perception.stair.landing_min_depth_m'"), std::string::npos) << moved;
+  const std::string range = load_error(R"({"stair": {"landing_min_depth_m": -1}})");
+  EXPECT_NE(range.find("'stair.landing_min_depth_m' = -1 is out of range"), std::string::npos) << range;
+}
+
 // --print-config's JSON read back gives the same values: one field list serves both.
 TEST(PerceptionConfig, PrintedConfigReadsBackToTheSameValues) {
   PerceptionConfig c;

@@ -252,8 +252,9 @@ TEST(TrackerConfig, LoadsTheTrackerSectionAndNamesKeysAndRanges) {
     return std::string();
   };
   std::ofstream(path) << R"({"tracker": {"lifecycle": {"reset_after_s": 3.5}, "confirmation": {"min_confirmations": 3}},
-                             "perception": {"stair": {"min_steps": 3}}})";
+                             "perception": {"stair": {"min_steps": 3}}, "stair": {"landing_min_depth_m": 0.8}})";
   const TrackerConfig c = load_tracker_config(path);
+  EXPECT_DOUBLE_EQ(c.stair.landing_min_depth_m, 0.8);  // the top-level key perception reads too
   EXPECT_DOUBLE_EQ(c.lifecycle.reset_after_s, 3.5);
   EXPECT_EQ(c.confirmation.min_confirmations, 3);
   EXPECT_DOUBLE_EQ(c.registration.icp_max_distance_m, 1.0);

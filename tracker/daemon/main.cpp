@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
       .add("odometry-channel", "NAME", "channel of optional odometry (pose_t, bot_core.pose_t's layout)",
            "STAIRS_ODOMETRY")
       .add("status-channel", "NAME", "channel of daemon_status_t", "STAIRS_STATUS")
-      .config_options("\"tracker\"")
+      .config_options("\"stair\" and \"tracker\"")
       .add("reset-after-s", "S", "a model lost this long is dropped when a stair is in view again (overrides --config)", "")
       .add("verbose", "", "print the status line once a second even without a terminal");
   opts.parse(argc, argv);
@@ -107,7 +107,8 @@ int main(int argc, char** argv) {
   }
 
   if (opts.flag("print-config")) {
-    stairs::print_config(std::cout, {{"tracker", stairs::to_json(config)}});
+    stairs::print_config(std::cout, {{"stair", stairs::config_to_json(stairs::stair_definition(config))},
+                                     {"tracker", stairs::to_json(config)}});
     return 0;
   }
   lcm::LCM lcm(opts.get("lcm-url"));
