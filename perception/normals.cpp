@@ -20,58 +20,108 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
   const Intrinsics& K = frame.K;
   const uint16_t lo = static_cast<uint16_t>(std::clamp(cfg.min_depth_m / frame.depth_scale, 1.0, 65535.0));
   const uint16_t hi = static_cast<uint16_t>(std::clamp(cfg.max_depth_m / frame.depth_scale, 1.0, 65535.0));
+  const uint16_t span = static_cast<uint16_t>(hi - lo);
   const float cell_area = static_cast<float>(g.cell_px * g.cell_px);
   const float range_units = static_cast<float>(cfg.cell_valid_fraction_range_m / frame.depth_scale);
+  const int cp = g.cell_px, cols = g.width * cp;
+  const float scale = static_cast<float>(frame.depth_scale), cx = static_cast<float>(K.cx),
+              cy = static_cast<float>(K.cy), inv_fx = static_cast<float>(1.0 / K.fx),
+              inv_fy = static_cast<float>(1.0 / K.fy);
+  NormalGrid::Scratch& s = g.scratch;
+  s.column_min.resize(cols);
+  s.column_limit.resize(cols);
+  s.column_sum.resize(cols);
+  s.column_count.resize(cols);
+  s.column_row_sum.resize(cols);
+  s.cell_min.resize(g.width);
+  uint16_t* cmin = s.column_min.data();
+  uint16_t* climit = s.column_limit.data();
+  uint32_t* csum = s.column_sum.data();
+  uint32_t* ccount = s.column_count.data();
+  uint32_t* crows = s.column_row_sum.data();
+  // One band of cells at a time, in two contiguous sweeps over its pixel rows
+  // (column-wise, so the compiler vectorises them): the nearest valid depth of
+  // each cell, then the sums of its pixels on that nearest surface.
   for (int gy = 0; gy < g.height; ++gy) {
-    for (int gx = 0; gx < g.width; ++gx) {
-      const int u0 = gx * g.cell_px, v0 = gy * g.cell_px;
-      uint16_t d_min = 65535;
-      for (int v = v0; v < v0 + g.cell_px; ++v) {
-        const uint16_t* row = frame.depth.data() + static_cast<size_t>(v) * K.width;
-        for (int u = u0; u < u0 + g.cell_px; ++u)
-          if (row[u] >= lo && row[u] <= hi) d_min = std::min(d_min, row[u]);
+    const int v0 = gy * cp;
+    std::fill(cmin, cmin + cols, uint16_t{65535});
+    for (int v = v0; v < v0 + cp; ++v) {
+      const uint16_t* row = frame.depth.data() + static_cast<size_t>(v) * K.width;
+      for (int u = 0; u < cols; ++u) {
+        const uint16_t d = row[u];
+        const uint16_t x = static_cast<uint16_t>(d - lo) <= span ? d : uint16_t{65535};
+        cmin[u] = std::min(cmin[u], x);
       }
+    }
+    for (int gx = 0; gx < g.width; ++gx) {
+      const uint16_t m = *std::min_element(cmin + gx * cp, cmin + (gx + 1) * cp);
+      s.cell_min[gx] = m;
+      // No valid pixel: a limit below every valid depth (lo >= 1).
+      const uint32_t limit = m == 65535 ? 0u : m + static_cast<uint32_t>(cfg.jump_ratio * m);
+      std::fill(climit + gx * cp, climit + (gx + 1) * cp, static_cast<uint16_t>(std::min<uint32_t>(limit, 65535)));
+    }
+    std::fill(csum, csum + cols, 0u);
+    std::fill(ccount, ccount + cols, 0u);
+    std::fill(crows, crows + cols, 0u);
+    for (int v = v0; v < v0 + cp; ++v) {
+      const uint16_t* row = frame.depth.data() + static_cast<size_t>(v) * K.width;
+      for (int u = 0; u < cols; ++u) {
+        const uint16_t d = row[u];
+        const uint32_t on = static_cast<uint32_t>(d >= lo) & static_cast<uint32_t>(d <= climit[u]);
+        csum[u] += on * d;
+        ccount[u] += on;
+        crows[u] += on * static_cast<uint32_t>(v);
+      }
+    }
+    for (int gx = 0; gx < g.width; ++gx) {
       const int i = g.index(gx, gy);
       g.has_point[i] = 0;
+      const uint16_t d_min = s.cell_min[gx];
       if (d_min == 65535) continue;
-      const uint32_t limit = d_min + static_cast<uint32_t>(cfg.jump_ratio * d_min);
       uint32_t sum = 0, n = 0, su = 0, sv = 0;
-      for (int v = v0; v < v0 + g.cell_px; ++v) {
-        const uint16_t* row = frame.depth.data() + static_cast<size_t>(v) * K.width;
-        for (int u = u0; u < u0 + g.cell_px; ++u) {
-          const uint16_t d = row[u];
-          if (d >= lo && d <= limit) {
-            sum += d;
-            su += u;
-            sv += v;
-            ++n;
-          }
-        }
+      for (int u = gx * cp; u < (gx + 1) * cp; ++u) {
+        sum += csum[u];
+        n += ccount[u];
+        su += ccount[u] * static_cast<uint32_t>(u);
+        sv += crows[u];
       }
-      const float fraction = cfg.cell_min_valid_fraction * std::min(1.0f, range_units / d_min);
+      const float fraction = d_min <= range_units ? cfg.cell_min_valid_fraction
+                                                  : cfg.cell_min_valid_fraction * range_units / d_min;
       if (static_cast<float>(n) < std::max(1.0f, std::ceil(fraction * cell_area))) continue;
-      const float z = static_cast<float>(sum * frame.depth_scale / n);
-      g.points[i] = back_project(K, static_cast<float>(su) / n, static_cast<float>(sv) / n, z);
+      // One division per cell: the mean pixel and depth from 1/n.
+      const float inv_n = 1.0f / static_cast<float>(n);
+      const float z = static_cast<float>(sum) * scale * inv_n;
+      g.points[i] = {(static_cast<float>(su) * inv_n - cx) * inv_fx * z, (static_cast<float>(sv) * inv_n - cy) * inv_fy * z, z};
+      g.inverse_depth[i] = 1.0f / z;
       g.has_point[i] = 1;
     }
   }
 }
 
-}  // namespace
+// A row of cells (normal and depth, struct-of-arrays) and its neighbours at one offset.
+struct RowView {
+  const float *nx, *ny, *nz, *z;
+};
 
-void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g) {
-  g.cell_px = grid_cell_px(cfg, frame.K.width);
-  g.margin_cells = cfg.radius_cells;
-  g.width = frame.K.width / g.cell_px;
-  g.height = frame.K.height / g.cell_px;
-  const size_t n = static_cast<size_t>(g.width) * g.height;
-  g.points.assign(n, Eigen::Vector3f::Zero());
-  g.normals.assign(n, Eigen::Vector3f::Zero());
-  g.has_point.assign(n, 0);
-  g.has_normal.assign(n, 0);
-  if (n == 0) return;
-  cell_means(frame, cfg, g);
+// Adds each neighbour's normal to its cell's sum when both lie on one surface.
+void smooth_row(RowView c, RowView k, int count, float cos_smooth, float jump, float* __restrict sx,
+                float* __restrict sy, float* __restrict sz) {
+  for (int i = 0; i < count; ++i) {
+    const float dot = k.nx[i] * c.nx[i] + k.ny[i] * c.ny[i] + k.nz[i] * c.nz[i];
+    const float near_z = c.z[i] < k.z[i] ? c.z[i] : k.z[i];
+    const float dz = c.z[i] - k.z[i], limit = jump * near_z;
+    // Selects, not branches, so that it vectorises (-fopt-info-vec).
+    float w = dot > cos_smooth ? 1.0f : 0.0f;
+    w = dz <= limit ? w : 0.0f;
+    w = -dz <= limit ? w : 0.0f;
+    sx[i] += w * k.nx[i];
+    sy[i] += w * k.ny[i];
+    sz[i] += w * k.nz[i];
+  }
+}
 
+// Normals by cross products of neighbours radius_cells away (thesis 3.2).
+void raw_normals(const NormalsConfig& cfg, NormalGrid& g) {
   const int r = cfg.radius_cells;
   auto near = [&](int a, int b) {
     if (!g.has_point[a] || !g.has_point[b]) return false;
@@ -82,11 +132,10 @@ void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGr
   // means the two sides lie on different surfaces; keep the side closer to c.
   auto one_sided = [&](int c, int& lo, int& hi) {
     if (lo == c || hi == c) return;
-    const float ic = 1.0f / g.points[c].z(), il = 1.0f / g.points[lo].z(), ih = 1.0f / g.points[hi].z();
+    const float ic = g.inverse_depth[c], il = g.inverse_depth[lo], ih = g.inverse_depth[hi];
     if (std::abs(il + ih - 2 * ic) <= cfg.inverse_depth_kink_per_m) return;
     (std::abs(il - ic) > std::abs(ih - ic) ? lo : hi) = c;
   };
-  std::vector<Eigen::Vector3f>& raw = g.normals;
   for (int gy = r; gy < g.height - r; ++gy) {
     for (int gx = r; gx < g.width - r; ++gx) {
       const int c = g.index(gx, gy);
@@ -104,28 +153,57 @@ void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGr
       if (!(len > 0.0f)) continue;
       nrm /= len;
       if (nrm.dot(g.points[c]) > 0) nrm = -nrm;
-      raw[c] = nrm;
+      g.normals[c] = nrm;
       g.has_normal[c] = 1;
     }
   }
-  if (!cfg.smooth) return;
-  // 3x3 mean over neighbours on the same surface: noise down, edges kept.
-  std::vector<Eigen::Vector3f> smoothed(raw);
-  const float cos_smooth = std::cos(cfg.smooth_max_angle_deg * static_cast<float>(M_PI) / 180.0f);
-  for (int gy = 1; gy < g.height - 1; ++gy) {
-    for (int gx = 1; gx < g.width - 1; ++gx) {
-      const int c = g.index(gx, gy);
-      if (!g.has_normal[c]) continue;
-      Eigen::Vector3f s = Eigen::Vector3f::Zero();
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int k = g.index(gx + dx, gy + dy);
-          if (g.has_normal[k] && raw[k].dot(raw[c]) > cos_smooth && near(c, k)) s += raw[k];
-        }
-      smoothed[c] = s.normalized();
-    }
+}
+
+// 3x3 mean over neighbours on the same surface: noise down, edges kept. On
+// struct-of-arrays copies, one neighbour offset at a time along a row, so the
+// compiler runs four cells per instruction. A cell without a normal has a
+// zero one (its dot is 0, never above cos_smooth) and adds nothing.
+void smooth_normals(const NormalsConfig& cfg, NormalGrid& g) {
+  const size_t n = g.normals.size();
+  NormalGrid::Scratch& sc = g.scratch;
+  for (auto* v : {&sc.nx, &sc.ny, &sc.nz, &sc.z, &sc.sx, &sc.sy, &sc.sz}) v->assign(n, 0.0f);
+  for (size_t i = 0; i < n; ++i) {
+    sc.nx[i] = g.normals[i].x(), sc.ny[i] = g.normals[i].y(), sc.nz[i] = g.normals[i].z();
+    sc.z[i] = g.points[i].z();
   }
-  g.normals.swap(smoothed);
+  const float cos_smooth = std::cos(cfg.smooth_max_angle_deg * static_cast<float>(M_PI) / 180.0f);
+  const float jump = cfg.jump_ratio * 2 * cfg.radius_cells;
+  for (int gy = 1; gy < g.height - 1; ++gy) {
+    const int c0 = gy * g.width + 1, count = g.width - 2;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int k0 = c0 + dy * g.width + dx;
+        smooth_row({sc.nx.data() + c0, sc.ny.data() + c0, sc.nz.data() + c0, sc.z.data() + c0},
+                   {sc.nx.data() + k0, sc.ny.data() + k0, sc.nz.data() + k0, sc.z.data() + k0}, count, cos_smooth,
+                   jump, sc.sx.data() + c0, sc.sy.data() + c0, sc.sz.data() + c0);
+      }
+  }
+  for (size_t i = 0; i < n; ++i)
+    if (g.has_normal[i]) g.normals[i] = Eigen::Vector3f(sc.sx[i], sc.sy[i], sc.sz[i]).normalized();
+}
+
+}  // namespace
+
+void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g) {
+  g.cell_px = grid_cell_px(cfg, frame.K.width);
+  g.margin_cells = cfg.radius_cells;
+  g.width = frame.K.width / g.cell_px;
+  g.height = frame.K.height / g.cell_px;
+  const size_t n = static_cast<size_t>(g.width) * g.height;
+  g.points.assign(n, Eigen::Vector3f::Zero());
+  g.normals.assign(n, Eigen::Vector3f::Zero());
+  g.inverse_depth.assign(n, 0.0f);
+  g.has_point.assign(n, 0);
+  g.has_normal.assign(n, 0);
+  if (n == 0) return;
+  cell_means(frame, cfg, g);
+  raw_normals(cfg, g);
+  if (cfg.smooth) smooth_normals(cfg, g);
 }
 
 }  // namespace stairs

@@ -18,8 +18,18 @@ struct NormalGrid {
   int margin_cells = 0;       // cells at each border without normals (the normal radius)
   std::vector<Eigen::Vector3f> points;   // m, optical frame
   std::vector<Eigen::Vector3f> normals;  // unit, pointing towards the camera
+  std::vector<float> inverse_depth;      // 1/m of each point (on a plane 1/z is affine in the image)
   std::vector<uint8_t> has_point, has_normal;
   int index(int gx, int gy) const { return gy * width + gx; }
+
+  // Per-column and per-cell working rows of compute_normals, kept so that a
+  // steady stream of frames allocates nothing.
+  struct Scratch {
+    std::vector<uint16_t> column_min, column_limit;
+    std::vector<uint32_t> column_sum, column_count, column_row_sum;
+    std::vector<uint16_t> cell_min;
+    std::vector<float> nx, ny, nz, z, sx, sy, sz;  // struct-of-arrays for the smoothing pass
+  } scratch;
 };
 
 // Cell side in pixels for a frame of the given width (grid_cell_px is for 640).

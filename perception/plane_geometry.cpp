@@ -1,8 +1,11 @@
 #include "perception/plane_geometry.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
+#include <tuple>
+#include <utility>
 
 namespace stairs {
 
@@ -43,10 +46,33 @@ struct Group {
   PlaneKind kind = PlaneKind::Other;
 };
 
-float percentile(std::vector<float>& v, float q) {
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1)));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[k];
+// The q and 1-q percentiles (q <= 0.5), exactly, in three linear passes
+// instead of two selections: a histogram of the values finds the bucket
+// holding each rank, and only that bucket's values are selected among.
+std::pair<float, float> trimmed_range(const std::vector<float>& v, float q, std::vector<float>& bucket) {
+  const size_t n = v.size();
+  const auto rank = [&](float p) { return std::min(n - 1, static_cast<size_t>(p * (n - 1))); };
+  const size_t ranks[2] = {rank(q), rank(1.0f - q)};
+  const auto [lo_it, hi_it] = std::minmax_element(v.begin(), v.end());
+  const float lo = *lo_it, hi = *hi_it;
+  if (!(hi > lo)) return {lo, hi};
+  constexpr int kBuckets = 256;
+  const float scale = (kBuckets - 1) / (hi - lo);
+  const auto bucket_of = [&](float x) { return std::min(kBuckets - 1, static_cast<int>((x - lo) * scale)); };
+  std::array<uint32_t, kBuckets> count{};
+  for (float x : v) ++count[bucket_of(x)];
+  float out[2];
+  for (int i = 0; i < 2; ++i) {
+    size_t below = 0;
+    int b = 0;
+    while (below + count[b] <= ranks[i]) below += count[b++];
+    bucket.clear();
+    for (float x : v)
+      if (bucket_of(x) == b) bucket.push_back(x);
+    std::nth_element(bucket.begin(), bucket.begin() + (ranks[i] - below), bucket.end());
+    out[i] = bucket[ranks[i] - below];
+  }
+  return {out[0], out[1]};
 }
 
 // Groups whose keys share a bin merge; then each group merges at most once with
@@ -150,7 +176,7 @@ std::vector<Group> merge(Classified c, const std::vector<Segment>& segments, con
 
 // Scratch buffers of extents(), reused across planes.
 struct ExtentScratch {
-  std::vector<float> ss, ts, zs, zs_all;
+  std::vector<float> ss, ts, zs, bucket;
 };
 
 // Extents along the axis (s), across it (t) and up (z), trimmed percentiles;
@@ -170,22 +196,17 @@ PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Ei
     x.zs.push_back(q.z());
   }
   centroid /= static_cast<float>(cells.size());
-  x.zs_all = x.zs;
   PlaneExtent e;
-  const float lo = cfg.extent_percentile, hi = 1.0f - cfg.extent_percentile;
-  e.s_min = percentile(x.ss, lo);
-  e.s_max = percentile(x.ss, hi);
-  e.t_min = percentile(x.ts, lo);
-  e.t_max = percentile(x.ts, hi);
-  e.z_min = percentile(x.zs, lo);
-  e.z_max = percentile(x.zs, hi);
+  std::tie(e.s_min, e.s_max) = trimmed_range(x.ss, cfg.extent_percentile, x.bucket);
+  std::tie(e.t_min, e.t_max) = trimmed_range(x.ts, cfg.extent_percentile, x.bucket);
+  std::tie(e.z_min, e.z_max) = trimmed_range(x.zs, cfg.extent_percentile, x.bucket);
   // Normals exist from margin_cells inside the grid: a plane whose top
   // reaches the upper margin may continue above the view.
   const int margin = g.margin_cells + 1;
   for (size_t k = 0; k < cells.size() && e.top_in_view; ++k)
-    e.top_in_view = x.zs_all[k] < e.z_max - cfg.view_edge_band_m || cells[k] / g.width > margin;
+    e.top_in_view = x.zs[k] < e.z_max - cfg.view_edge_band_m || cells[k] / g.width > margin;
   for (size_t k = 0; k < cells.size() && e.bottom_in_view; ++k)
-    e.bottom_in_view = x.zs_all[k] > e.z_min + cfg.view_edge_band_m || cells[k] / g.width < g.height - 1 - margin;
+    e.bottom_in_view = x.zs[k] > e.z_min + cfg.view_edge_band_m || cells[k] / g.width < g.height - 1 - margin;
   e.s_mean = cy * centroid.x() + sy * centroid.y();
   e.z_mean = centroid.z();
   return e;

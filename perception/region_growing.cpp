@@ -8,15 +8,20 @@
 namespace stairs {
 
 void fit_segment(const NormalGrid& g, Segment& s) {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (int c : s.cells) mean += g.points[c].cast<double>();
-  mean /= static_cast<double>(s.cells.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  // One pass of sums (double: the centred form's precision at a few metres).
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
   for (int c : s.cells) {
-    const Eigen::Vector3d d = g.points[c].cast<double>() - mean;
-    cov += d * d.transpose();
+    const Eigen::Vector3d p = g.points[c].cast<double>();
+    sum += p;
+    xx += p.x() * p.x(), xy += p.x() * p.y(), xz += p.x() * p.z();
+    yy += p.y() * p.y(), yz += p.y() * p.z(), zz += p.z() * p.z();
   }
-  cov /= static_cast<double>(s.cells.size());
+  const double inv_n = 1.0 / static_cast<double>(s.cells.size());
+  const Eigen::Vector3d mean = sum * inv_n;
+  Eigen::Matrix3d cov;
+  cov << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+  cov = cov * inv_n - mean * mean.transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
   es.computeDirect(cov);
   Eigen::Vector3d n = es.eigenvectors().col(0);
@@ -54,7 +59,8 @@ std::vector<Segment> grow_regions(const NormalGrid& g, const RegionGrowingConfig
       stack.pop_back();
       grown.push_back(c);
       normal_sum += g.normals[c];
-      const Eigen::Vector3f mean_normal = normal_sum.normalized();
+      // Within region_angle of the mean normal: n.s >= cos |s|, squared (no root per cell).
+      const float region_bound = cos_region * cos_region * normal_sum.squaredNorm();
       const int gx = c % g.width, gy = c / g.width;
       const Eigen::Vector3f& nc = g.normals[c];
       const Eigen::Vector3f& pc = g.points[c];
@@ -63,7 +69,8 @@ std::vector<Segment> grow_regions(const NormalGrid& g, const RegionGrowingConfig
                          gy + 1 < g.height ? c + g.width : -1};
       for (int k : nb) {
         if (k < 0 || labels[k] != -1 || !g.has_normal[k]) continue;
-        if (g.normals[k].dot(nc) < cos_max || g.normals[k].dot(mean_normal) < cos_region) continue;
+        const float to_mean = g.normals[k].dot(normal_sum);
+        if (g.normals[k].dot(nc) < cos_max || to_mean < 0 || to_mean * to_mean < region_bound) continue;
         if (std::abs(nc.dot(g.points[k] - pc)) > tol) continue;
         labels[k] = label;
         stack.push_back(k);
