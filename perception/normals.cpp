@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace stairs {
 
@@ -92,7 +94,7 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
       const float inv_n = 1.0f / static_cast<float>(n);
       const float z = static_cast<float>(sum) * scale * inv_n;
       g.points[i] = {(static_cast<float>(su) * inv_n - cx) * inv_fx * z, (static_cast<float>(sv) * inv_n - cy) * inv_fy * z, z};
-      g.inverse_depth[i] = 1.0f / z;
+      s.x[i] = g.points[i].x(), s.y[i] = g.points[i].y(), s.z[i] = z, s.iz[i] = 1.0f / z;
       g.has_point[i] = 1;
     }
   }
@@ -120,42 +122,84 @@ void smooth_row(RowView c, RowView k, int count, float cos_smooth, float jump, f
   }
 }
 
+// Lane masks (0 or all ones) and m ? a : b on the bits: the compiler keeps a
+// ternary of floats or a bool as a branch, which stops a loop from vectorising
+// (-fopt-info-vec); these do not.
+using Mask = uint32_t;
+inline Mask mask(bool b) { return 0u - static_cast<Mask>(b); }
+inline float select(Mask m, float a, float b) {
+  uint32_t ai, bi;
+  std::memcpy(&ai, &a, sizeof ai);
+  std::memcpy(&bi, &b, sizeof bi);
+  const uint32_t r = (ai & m) | (bi & ~m);
+  float out;
+  std::memcpy(&out, &r, sizeof out);
+  return out;
+}
+
+// Points of a row of cells, struct-of-arrays, from some first cell on.
+struct RowPoints {
+  const float *x, *y, *z, *iz;
+  RowPoints at(int offset) const { return {x + offset, y + offset, z + offset, iz + offset}; }
+};
+
+// One row of cells' normals from their neighbours r cells left, right, up and
+// down (`lo_a`/`hi_a`, `lo_b`/`hi_b`: the row shifted to them). Selects
+// instead of branches, so that it vectorises; out of line, because inlined
+// into raw_normals GCC 12 no longer vectorises it (-fopt-info-vec).
+[[gnu::noinline]] void normals_row(RowPoints c, RowPoints lo_a, RowPoints hi_a, RowPoints lo_b, RowPoints hi_b,
+                                   int count, float jump, float kink, float* __restrict nx, float* __restrict ny,
+                                   float* __restrict nz) {
+  for (int i = 0; i < count; ++i) {
+    const float xc = c.x[i], yc = c.y[i], zc = c.z[i], ic = c.iz[i];
+    // A neighbour on the cell's surface: no depth jump between them (z = 0: no point).
+    auto near = [&](float zk) {
+      const float d = zc - zk, limit = jump * select(mask(zc < zk), zc, zk);
+      return mask(d <= limit) & mask(-d <= limit);
+    };
+    // One-sided differences where a neighbour lies across a depth jump or a
+    // corner: on a plane 1/z is affine in the image, so a kink in 1/z across
+    // the centre means the two sides lie on different surfaces; the side
+    // farther from the centre's 1/z is dropped.
+    auto axis = [&](RowPoints lo, RowPoints hi, float& dx, float& dy, float& dz) {
+      const float xl = lo.x[i], xh = hi.x[i], yl = lo.y[i], yh = hi.y[i], zl = lo.z[i], zh = hi.z[i];
+      const float il = lo.iz[i], ih = hi.iz[i];
+      const Mask near_lo = near(zl), near_hi = near(zh);
+      const Mask kinked = near_lo & near_hi & mask(std::abs(il + ih - 2 * ic) > kink);
+      const Mask drop_lo = kinked & mask(std::abs(il - ic) > std::abs(ih - ic));
+      const Mask use_lo = near_lo & ~drop_lo, use_hi = near_hi & ~(kinked & ~drop_lo);
+      dx = select(use_hi, xh, xc) - select(use_lo, xl, xc);
+      dy = select(use_hi, yh, yc) - select(use_lo, yl, yc);
+      dz = select(use_hi, zh, zc) - select(use_lo, zl, zc);
+      return use_lo | use_hi;
+    };
+    float ax, ay, az, bx, by, bz;
+    const Mask ok_a = axis(lo_a, hi_a, ax, ay, az), ok_b = axis(lo_b, hi_b, bx, by, bz);
+    float cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+    const float len = std::sqrt(cx * cx + cy * cy + cz * cz);
+    const Mask ok = mask(zc > 0) & ok_a & ok_b & mask(len > 0.0f);
+    const float inv = select(ok, 1.0f, 0.0f) / select(ok, len, 1.0f);
+    cx *= inv, cy *= inv, cz *= inv;
+    const float sign = select(mask(cx * xc + cy * yc + cz * zc > 0), -1.0f, 1.0f);  // towards the camera
+    nx[i] = sign * cx, ny[i] = sign * cy, nz[i] = sign * cz;
+  }
+}
+
 // Normals by cross products of neighbours radius_cells away (thesis 3.2).
 void raw_normals(const NormalsConfig& cfg, NormalGrid& g) {
   const int r = cfg.radius_cells;
-  auto near = [&](int a, int b) {
-    if (!g.has_point[a] || !g.has_point[b]) return false;
-    const float za = g.points[a].z(), zb = g.points[b].z();
-    return std::abs(za - zb) <= cfg.jump_ratio * std::min(za, zb) * 2 * r;
-  };
-  // On a plane 1/z is affine in the image: a kink in 1/z across the centre
-  // means the two sides lie on different surfaces; keep the side closer to c.
-  auto one_sided = [&](int c, int& lo, int& hi) {
-    if (lo == c || hi == c) return;
-    const float ic = g.inverse_depth[c], il = g.inverse_depth[lo], ih = g.inverse_depth[hi];
-    if (std::abs(il + ih - 2 * ic) <= cfg.inverse_depth_kink_per_m) return;
-    (std::abs(il - ic) > std::abs(ih - ic) ? lo : hi) = c;
-  };
+  NormalGrid::Scratch& s = g.scratch;
+  const RowPoints all{s.x.data(), s.y.data(), s.z.data(), s.iz.data()};
+  const float jump = cfg.jump_ratio * 2 * r;
   for (int gy = r; gy < g.height - r; ++gy) {
-    for (int gx = r; gx < g.width - r; ++gx) {
-      const int c = g.index(gx, gy);
-      if (!g.has_point[c]) continue;
-      const int l = g.index(gx - r, gy), rt = g.index(gx + r, gy);
-      const int up = g.index(gx, gy - r), dn = g.index(gx, gy + r);
-      // One-sided differences where a neighbour lies across a depth jump or a corner.
-      int a0 = near(c, l) ? l : c, a1 = near(c, rt) ? rt : c;
-      int b0 = near(c, up) ? up : c, b1 = near(c, dn) ? dn : c;
-      one_sided(c, a0, a1);
-      one_sided(c, b0, b1);
-      if (a0 == a1 || b0 == b1) continue;
-      Eigen::Vector3f nrm = (g.points[a1] - g.points[a0]).cross(g.points[b1] - g.points[b0]);
-      const float len = nrm.norm();
-      if (!(len > 0.0f)) continue;
-      nrm /= len;
-      if (nrm.dot(g.points[c]) > 0) nrm = -nrm;
-      g.normals[c] = nrm;
-      g.has_normal[c] = 1;
-    }
+    const int c = g.index(r, gy);
+    normals_row(all.at(c), all.at(c - r), all.at(c + r), all.at(c - r * g.width), all.at(c + r * g.width),
+                g.width - 2 * r, jump, cfg.inverse_depth_kink_per_m, s.nx.data() + c, s.ny.data() + c,
+                s.nz.data() + c);
+  }
+  for (size_t i = 0; i < g.normals.size(); ++i) {
+    g.has_normal[i] = s.nx[i] != 0.0f || s.ny[i] != 0.0f || s.nz[i] != 0.0f;
+    g.normals[i] = {s.nx[i], s.ny[i], s.nz[i]};
   }
 }
 
@@ -166,11 +210,7 @@ void raw_normals(const NormalsConfig& cfg, NormalGrid& g) {
 void smooth_normals(const NormalsConfig& cfg, NormalGrid& g) {
   const size_t n = g.normals.size();
   NormalGrid::Scratch& sc = g.scratch;
-  for (auto* v : {&sc.nx, &sc.ny, &sc.nz, &sc.z, &sc.sx, &sc.sy, &sc.sz}) v->assign(n, 0.0f);
-  for (size_t i = 0; i < n; ++i) {
-    sc.nx[i] = g.normals[i].x(), sc.ny[i] = g.normals[i].y(), sc.nz[i] = g.normals[i].z();
-    sc.z[i] = g.points[i].z();
-  }
+  for (auto* v : {&sc.sx, &sc.sy, &sc.sz}) v->assign(n, 0.0f);
   const float cos_smooth = std::cos(cfg.smooth_max_angle_deg * static_cast<float>(M_PI) / 180.0f);
   const float jump = cfg.jump_ratio * 2 * cfg.radius_cells;
   for (int gy = 1; gy < g.height - 1; ++gy) {
@@ -197,7 +237,8 @@ void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGr
   const size_t n = static_cast<size_t>(g.width) * g.height;
   g.points.assign(n, Eigen::Vector3f::Zero());
   g.normals.assign(n, Eigen::Vector3f::Zero());
-  g.inverse_depth.assign(n, 0.0f);
+  for (auto* v : {&g.scratch.x, &g.scratch.y, &g.scratch.z, &g.scratch.iz, &g.scratch.nx, &g.scratch.ny, &g.scratch.nz})
+    v->assign(n, 0.0f);
   g.has_point.assign(n, 0);
   g.has_normal.assign(n, 0);
   if (n == 0) return;

@@ -18,7 +18,6 @@ struct NormalGrid {
   int margin_cells = 0;       // cells at each border without normals (the normal radius)
   std::vector<Eigen::Vector3f> points;   // m, optical frame
   std::vector<Eigen::Vector3f> normals;  // unit, pointing towards the camera
-  std::vector<float> inverse_depth;      // 1/m of each point (on a plane 1/z is affine in the image)
   std::vector<uint8_t> has_point, has_normal;
   int index(int gx, int gy) const { return gy * width + gx; }
 
@@ -28,7 +27,9 @@ struct NormalGrid {
     std::vector<uint16_t> column_min, column_limit;
     std::vector<uint32_t> column_sum, column_count, column_row_sum;
     std::vector<uint16_t> cell_min;
-    std::vector<float> nx, ny, nz, z, sx, sy, sz;  // struct-of-arrays for the smoothing pass
+    std::vector<float> x, y, z, iz;  // points and 1/z, struct-of-arrays (0: no point)
+    std::vector<float> nx, ny, nz;   // normals, struct-of-arrays (0: no normal)
+    std::vector<float> sx, sy, sz;   // smoothing sums
   } scratch;
 };
 
