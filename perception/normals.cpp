@@ -15,6 +15,40 @@ int grid_cell_px(const NormalsConfig& cfg, int image_width) {
 
 namespace {
 
+// The nearest valid depth (in [lo, lo + span], else 65535) of each column over
+// a band of `rows` pixel rows. Contiguous and branch-free: it vectorises.
+void column_nearest(const uint16_t* band, int stride, int rows, int cols, uint16_t lo, uint16_t span,
+                    uint16_t* __restrict nearest) {
+  std::fill(nearest, nearest + cols, uint16_t{65535});
+  for (int v = 0; v < rows; ++v) {
+    const uint16_t* row = band + static_cast<size_t>(v) * stride;
+    for (int u = 0; u < cols; ++u) {
+      const uint16_t d = row[u];
+      nearest[u] = std::min(nearest[u], static_cast<uint16_t>(d - lo) <= span ? d : uint16_t{65535});
+    }
+  }
+}
+
+// Per column over the band: the sum, count and sum of row indices (from v0) of
+// the pixels in [lo, limit[u]], the depths on each cell's nearest surface.
+void column_sums(const uint16_t* band, int stride, int v0, int rows, int cols, uint16_t lo,
+                 const uint16_t* __restrict limit, uint32_t* __restrict sum, uint32_t* __restrict count,
+                 uint32_t* __restrict row_sum) {
+  std::fill(sum, sum + cols, 0u);
+  std::fill(count, count + cols, 0u);
+  std::fill(row_sum, row_sum + cols, 0u);
+  for (int v = 0; v < rows; ++v) {
+    const uint16_t* row = band + static_cast<size_t>(v) * stride;
+    for (int u = 0; u < cols; ++u) {
+      const uint16_t d = row[u];
+      const uint32_t on = static_cast<uint32_t>(d >= lo) & static_cast<uint32_t>(d <= limit[u]);
+      sum[u] += on * d;
+      count[u] += on;
+      row_sum[u] += on * static_cast<uint32_t>(v0 + v);
+    }
+  }
+}
+
 // Each cell is the mean of its nearest surface (pixels within jump_ratio of its nearest one): a mean
 // across a depth edge would float between surfaces. Near, a sparse cell is flying pixels; at range
 // the sensor drops many, so the valid fraction needed falls as 1/z beyond cell_valid_fraction_range_m.
@@ -41,20 +75,12 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
   uint32_t* csum = s.column_sum.data();
   uint32_t* ccount = s.column_count.data();
   uint32_t* crows = s.column_row_sum.data();
-  // One band of cells at a time, in two contiguous sweeps over its pixel rows
-  // (column-wise, so the compiler vectorises them): the nearest valid depth of
-  // each cell, then the sums of its pixels on that nearest surface.
+  // One band of cells at a time, in two sweeps over its pixel rows: the nearest
+  // valid depth of each cell, then the sums of its pixels on that surface.
   for (int gy = 0; gy < g.height; ++gy) {
     const int v0 = gy * cp;
-    std::fill(cmin, cmin + cols, uint16_t{65535});
-    for (int v = v0; v < v0 + cp; ++v) {
-      const uint16_t* row = frame.depth.data() + static_cast<size_t>(v) * K.width;
-      for (int u = 0; u < cols; ++u) {
-        const uint16_t d = row[u];
-        const uint16_t x = static_cast<uint16_t>(d - lo) <= span ? d : uint16_t{65535};
-        cmin[u] = std::min(cmin[u], x);
-      }
-    }
+    const uint16_t* band = frame.depth.data() + static_cast<size_t>(v0) * K.width;
+    column_nearest(band, K.width, cp, cols, lo, span, cmin);
     for (int gx = 0; gx < g.width; ++gx) {
       const uint16_t m = *std::min_element(cmin + gx * cp, cmin + (gx + 1) * cp);
       s.cell_min[gx] = m;
@@ -62,19 +88,7 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
       const uint32_t limit = m == 65535 ? 0u : m + static_cast<uint32_t>(cfg.jump_ratio * m);
       std::fill(climit + gx * cp, climit + (gx + 1) * cp, static_cast<uint16_t>(std::min<uint32_t>(limit, 65535)));
     }
-    std::fill(csum, csum + cols, 0u);
-    std::fill(ccount, ccount + cols, 0u);
-    std::fill(crows, crows + cols, 0u);
-    for (int v = v0; v < v0 + cp; ++v) {
-      const uint16_t* row = frame.depth.data() + static_cast<size_t>(v) * K.width;
-      for (int u = 0; u < cols; ++u) {
-        const uint16_t d = row[u];
-        const uint32_t on = static_cast<uint32_t>(d >= lo) & static_cast<uint32_t>(d <= climit[u]);
-        csum[u] += on * d;
-        ccount[u] += on;
-        crows[u] += on * static_cast<uint32_t>(v);
-      }
-    }
+    column_sums(band, K.width, v0, cp, cols, lo, climit, csum, ccount, crows);
     for (int gx = 0; gx < g.width; ++gx) {
       const int i = g.index(gx, gy);
       g.has_point[i] = 0;
@@ -93,7 +107,8 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
       // One division per cell: the mean pixel and depth from 1/n.
       const float inv_n = 1.0f / static_cast<float>(n);
       const float z = static_cast<float>(sum) * scale * inv_n;
-      g.points[i] = {(static_cast<float>(su) * inv_n - cx) * inv_fx * z, (static_cast<float>(sv) * inv_n - cy) * inv_fy * z, z};
+      g.points[i] = {(static_cast<float>(su) * inv_n - cx) * inv_fx * z,
+                     (static_cast<float>(sv) * inv_n - cy) * inv_fy * z, z};
       s.x[i] = g.points[i].x(), s.y[i] = g.points[i].y(), s.z[i] = z, s.iz[i] = 1.0f / z;
       g.has_point[i] = 1;
     }
