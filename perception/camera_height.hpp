@@ -8,15 +8,13 @@
 #include "perception/plane_geometry.hpp"
 
 #include <optional>
-#include <vector>
 
 namespace stairs {
 
-// Height over the lowest surface spanning the point straight beneath, when in view; else over the
-// level before the flight if it shows more than the longest run (no tread hides below the image).
-// Otherwise unknown: the tracker's model knows better (issue 15: unknown beats wrong).
-std::optional<double> camera_height(const PlaneSet& ps, const std::vector<Step>& steps, Direction direction,
-                                    const Intrinsics& K, double pitch_deg, const CameraHeightConfig& cfg,
-                                    const StairConfig& stair, float run_tolerance_m);
+// Height above the lowest surface spanning the point straight beneath, when in view. Otherwise
+// unknown, unless a configured mount (camera_height.mount_*) on a level carrier names the level
+// at its height as the ground (issue 15: unknown beats wrong; the tracker's model knows better).
+std::optional<double> camera_height(const PlaneSet& ps, const Intrinsics& K, double pitch_deg, double roll_deg,
+                                    const CameraHeightConfig& cfg);
 
 }  // namespace stairs

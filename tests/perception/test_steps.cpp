@@ -100,6 +100,23 @@ TEST(PerceptionGrammar, NoChainOnImplausibleLevels) {
   EXPECT_EQ(best_chain({level(-1.0f, 0.5f, 1.5f), level(-0.97f, 1.5f, 1.8f)}, c).steps(), 0);
 }
 
+// A mounted camera on a level carrier: the level at the mount's height is its
+// ground; a level a riser off, or a tilted carrier, is not (issue 15, the mount).
+TEST(PerceptionCameraHeight, AMountNamesTheGroundOnlyAtItsHeightAndTilt) {
+  const DepthImage frame = test::render_stairs(640, 480, -35, 0, 1.0, 4, 1.3);
+  const auto height = [&](float mount_m, float pitch_deg) {
+    PerceptionConfig cfg;
+    cfg.camera_height.mount_height_m = mount_m;
+    cfg.camera_height.mount_pitch_deg = pitch_deg;
+    return Pipeline(cfg).process(frame).camera.height_m;
+  };
+  ASSERT_TRUE(height(1.0f, -35.0f).has_value());
+  EXPECT_NEAR(*height(1.0f, -35.0f), 1.0, 0.01);
+  EXPECT_FALSE(height(1.17f, -35.0f).has_value()) << "a riser below the level seen";
+  EXPECT_FALSE(height(1.0f, -20.0f).has_value()) << "the carrier tilted 15 deg";
+  EXPECT_FALSE(height(0.0f, -35.0f).has_value()) << "no mount";
+}
+
 TEST(PerceptionSteps, SyntheticAscendingStairsEndToEnd) {
   Pipeline p;
   const Observation o = p.process(test::render_stairs(640, 480, -35, 0, 1.0, 4, 1.3));
@@ -115,8 +132,9 @@ TEST(PerceptionSteps, SyntheticAscendingStairsEndToEnd) {
       EXPECT_NEAR(*o.steps[k].tread_depth_m, 0.28, 0.03);
     }
   }
-  ASSERT_TRUE(o.camera.height_m.has_value());
-  EXPECT_NEAR(*o.camera.height_m, 1.0, 0.01);
+  // The floor fills the image's lowest row, but one frame cannot tell it from a
+  // landing with steps hidden below the view: no height (issue 15).
+  EXPECT_FALSE(o.camera.height_m.has_value());
   ASSERT_TRUE(o.camera.distance_m.has_value());
   EXPECT_NEAR(*o.camera.distance_m, 1.3, 0.04);
   // Tread/riser samples are capped and in the gravity frame.
