@@ -12,6 +12,7 @@ ChainConfig load_chain_config(const std::string& path) {
 
 nlohmann::ordered_json to_json(const ChainConfig& c) {
   return {{"stair", config_to_json(stair_definition(c.perception))},
+          {"mount", config_to_json(c.perception.mount)},
           {"perception", to_json(c.perception)},
           {"tracker", to_json(c.tracker)}};
 }

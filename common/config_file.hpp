@@ -1,7 +1,7 @@
 // The one config file every program takes as --config FILE:
-//   {"stair": {...}, "perception": {"normals": {...}, "stair": {...}, ...}, "tracker": {...}}
-// The top-level "stair" object is what perception and the tracker share. All
-// three objects and every key in them are optional (defaults otherwise);
+//   {"stair": {...}, "mount": {...}, "perception": {"normals": {...}, ...}, "tracker": {...}}
+// The top-level "stair" object is what perception and the tracker share,
+// "mount" where the camera sits on a robot. All four objects and every key in them are optional (defaults otherwise);
 // config/default.json ships every key with its default, and each program's
 // --print-config prints the values it runs with.
 #pragma once
@@ -15,12 +15,13 @@ namespace stairs {
 
 struct ConfigSections {
   nlohmann::json stair = nlohmann::json::object();  // what both share (common/stair_definition.hpp)
+  nlohmann::json mount = nlohmann::json::object();  // the camera on its robot (common/mount.hpp)
   nlohmann::json perception = nlohmann::json::object();
   nlohmann::json tracker = nlohmann::json::object();
 };
 
 // "" = defaults. Throws std::runtime_error "FILE: reason" on a missing file,
-// bad JSON, a non-object, or a top-level key other than the three (a flat file
+// bad JSON, a non-object, or a top-level key other than the four (a flat file
 // of perception or tracker keys is refused, not read as defaults).
 ConfigSections read_config_file(const std::string& path);
 

@@ -48,7 +48,7 @@ Options& Options::add(const std::string& name, const std::string& value_name, co
 
 Options& Options::config_options(const std::string& sections) {
   add("config", "FILE",
-      "config file {\"stair\": {...}, \"perception\": {...}, \"tracker\": {...}}, any subset of the keys (config/default.json "
+      "config file {\"stair\": {...}, \"mount\": {...}, \"perception\": {...}, \"tracker\": {...}}, any subset of the keys (config/default.json "
       "has them all); this program reads " + sections);
   return add("print-config", "", "print the effective config as JSON (the file's layout) and exit");
 }

@@ -25,7 +25,7 @@ const PlaneExtent* lowest_at_view_edge(const PlaneSet& ps, double below_rad, con
 }  // namespace
 
 std::optional<double> camera_height(const PlaneSet& ps, const Intrinsics& K, double pitch_deg, double roll_deg,
-                                    const CameraHeightConfig& cfg) {
+                                    const CameraHeightConfig& cfg, const MountConfig& mount) {
   const double below_rad = -pitch_deg * M_PI / 180.0 + std::atan((K.height - 1 - K.cy) / K.fy);
   if (below_rad <= 0) return std::nullopt;
   if (below_rad >= M_PI / 2) {
@@ -43,12 +43,12 @@ std::optional<double> camera_height(const PlaneSet& ps, const Intrinsics& K, dou
   // lowest row or one a riser or more below it: a landing looks like a floor,
   // and a step hides under the view (thesis 4.2). Only a mounted camera on a
   // level carrier settles it: that level at the mount's height is its ground.
-  if (cfg.mount_height_m <= 0) return std::nullopt;
-  if (std::abs(pitch_deg - cfg.mount_pitch_deg) > cfg.mount_tilt_tolerance_deg ||
-      std::abs(roll_deg - cfg.mount_roll_deg) > cfg.mount_tilt_tolerance_deg)
+  if (!mount.configured()) return std::nullopt;
+  if (std::abs(pitch_deg - mount.pitch_deg) > cfg.mount_tilt_tolerance_deg ||
+      std::abs(roll_deg - mount.roll_deg) > cfg.mount_tilt_tolerance_deg)
     return std::nullopt;  // the carrier is tilted (on the stair): its ground is not level
   const PlaneExtent* lowest = lowest_at_view_edge(ps, below_rad, cfg);
-  if (!lowest || std::abs(-lowest->z_mean - cfg.mount_height_m) > cfg.mount_height_tolerance_m) return std::nullopt;
+  if (!lowest || std::abs(-lowest->z_mean - mount.height_m) > cfg.mount_height_tolerance_m) return std::nullopt;
   return -static_cast<double>(lowest->z_mean);
 }
 

@@ -12,9 +12,9 @@
 namespace stairs {
 
 // Height above the lowest surface spanning the point straight beneath, when in view. Otherwise
-// unknown, unless a configured mount (camera_height.mount_*) on a level carrier names the level
+// unknown, unless a configured mount (the top-level "mount") on a level carrier names the level
 // at its height as the ground (issue 15: unknown beats wrong; the tracker's model knows better).
 std::optional<double> camera_height(const PlaneSet& ps, const Intrinsics& K, double pitch_deg, double roll_deg,
-                                    const CameraHeightConfig& cfg);
+                                    const CameraHeightConfig& cfg, const MountConfig& mount);
 
 }  // namespace stairs

@@ -45,6 +45,7 @@ PerceptionConfig perception_config_from_json(const nlohmann::json& object, const
 PerceptionConfig perception_config_from_sections(const ConfigSections& sections, const std::string& file) {
   PerceptionConfig c = perception_config_from_json(sections.perception, file);
   c.stair.landing_min_depth_m = static_cast<float>(stair_definition_from_json(sections.stair, file).landing_min_depth_m);
+  c.mount = mount_from_json(sections.mount, file);
   return c;
 }
 

@@ -4,6 +4,7 @@
 
 #include "common/config_file.hpp"
 #include "common/limits.hpp"
+#include "common/mount.hpp"
 #include "common/stair_definition.hpp"
 
 #include <nlohmann/json.hpp>
@@ -195,11 +196,8 @@ struct CameraHeightConfig {
   float view_edge_margin_m = 0.1f;   // m; a surface whose near edge is this close to where the
   float view_edge_tolerance = 0.15f;  // (+ this fraction) the image's bottom row meets its height
                                       // runs on beneath the camera
-  // A camera on a robot (issue 15, "the mount"): out of view, the level at the mount's height below
-  // a level carrier is its ground. 0 = no mount (hand-held): then only a surface seen beneath counts.
-  float mount_height_m = 0.0f;             // m; camera above the carrier's ground (stairs-sim robot: 0.45)
-  float mount_pitch_deg = 0.0f;            // deg; camera pitch on level ground (stairs-sim robot: -20)
-  float mount_roll_deg = 0.0f;             // deg; camera roll on level ground
+  // With the top-level "mount" (issue 15): out of view, the level at the mount's height below a level
+  // carrier is its ground. Without one (hand-held), only a surface seen beneath counts.
   float mount_tilt_tolerance_deg = 3.0f;   // deg; pitch and roll this close to the mount's: the carrier is level
   float mount_height_tolerance_m = 0.05f;  // m; suspension, sinkage, noise; a riser (>= 0.1 m) is far more
 
@@ -207,9 +205,6 @@ struct CameraHeightConfig {
   void visit(V& v) {
     v("view_edge_margin_m", view_edge_margin_m, 0.0f, 10.0f);
     v("view_edge_tolerance", view_edge_tolerance, 0.0f, 10.0f);
-    v("mount_height_m", mount_height_m, 0.0f, 10.0f);
-    v("mount_pitch_deg", mount_pitch_deg, -90.0f, 90.0f);
-    v("mount_roll_deg", mount_roll_deg, -180.0f, 180.0f);
     v("mount_tilt_tolerance_deg", mount_tilt_tolerance_deg, 0.0f, 45.0f);
     v("mount_height_tolerance_m", mount_height_tolerance_m, 0.0f, 1.0f);
   }
@@ -390,6 +385,7 @@ struct PerceptionConfig {
   VerificationConfig verification;
   CameraHeightConfig camera_height;
   OutputConfig output;
+  MountConfig mount;  // not a key of "perception": the config file's top-level "mount"
 
   template <class V>
   void visit(V& v) {
@@ -412,7 +408,7 @@ struct PerceptionConfig {
 // on an unknown key, a wrong type, a value out of range or values that
 // contradict each other (riser_min_m above riser_max_m).
 PerceptionConfig perception_config_from_json(const nlohmann::json& object, const std::string& file);
-// The config file's "perception" object with the shared "stair" object applied.
+// The config file's "perception" object with the top-level "stair" and "mount" objects applied.
 PerceptionConfig perception_config_from_sections(const ConfigSections& sections, const std::string& file);
 // The config file at `path` (common/config_file.hpp); "" = defaults.
 PerceptionConfig load_perception_config(const std::string& path);

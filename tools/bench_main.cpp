@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
   opts.positional("INPUT", "LCM log or sequence directory", false)
       .add("resolution", "WxH", "downsample the input by an integer factor to WxH (e.g. 320x240)")
       .add("max-frames", "N", "process at most N frames (0 = all)", "0")
-      .config_options("\"stair\", \"perception\" and \"tracker\"")
+      .config_options("\"stair\", \"mount\", \"perception\" and \"tracker\"")
       .add("header", "", "print the table header (and nothing else when no INPUT is given)");
   opts.parse(argc, argv);
   if (opts.flag("print-config")) {

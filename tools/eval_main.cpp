@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
                        "observations and models the daemons published, as they ran.");
   opts.positional("INPUT", "LCM log (STAIRS_DEPTH [+ STAIRS_GROUND_TRUTH]) or sequence directory", false)
       .add("json", "FILE", "write DESIGN.md's Result JSON here (atomically)")
-      .config_options("\"stair\", \"perception\" and \"tracker\"")
+      .config_options("\"stair\", \"mount\", \"perception\" and \"tracker\"")
       .add("max-frames", "N", "process at most N frames (0 = all)", "0")
       .add("resolution", "WxH", "downsample the input by an integer factor to WxH (e.g. 320x240)")
       .add("recorded", "",

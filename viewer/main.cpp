@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
       .add("every", "K", "headless: draw every K-th frame", "1")
       .add("max-frames", "N", "headless: stop after N input frames (0 = all)", "0")
       .add("video-fps", "HZ", "headless: frame rate of a video output", "15")
-      .config_options("\"stair\", \"perception\" and \"tracker\" (headless, for depth-only inputs)")
+      .config_options("\"stair\", \"mount\", \"perception\" and \"tracker\" (headless, for depth-only inputs)")
       .add("normals", "", "start with the normal image instead of the depth image")
       .add("lcm-url", "URL", "live: LCM URL (empty = LCM's default)")
       .add("depth-channel", "NAME", "depth frames", "STAIRS_DEPTH")

@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
       .add("status-channel", "NAME", "channel of daemon_status_t", "STAIRS_STATUS")
       .add("imu-channel", "NAME", "channel of optional IMU samples (imu_t; config imu.to_camera_* turns them)",
            "STAIRS_IMU")
-      .config_options("\"stair\" and \"perception\"")
+      .config_options("\"stair\", \"mount\" and \"perception\"")
       .add("verbose", "", "print the status line once a second even without a terminal");
   opts.parse(argc, argv);
 
@@ -92,6 +92,7 @@ int main(int argc, char** argv) {
   }
   if (opts.flag("print-config")) {
     stairs::print_config(std::cout, {{"stair", stairs::config_to_json(stairs::stair_definition(config))},
+                                     {"mount", stairs::config_to_json(config.mount)},
                                      {"perception", stairs::to_json(config)}});
     return 0;
   }

@@ -79,6 +79,18 @@ TEST(PerceptionConfig, TheLandingDepthIsTheTopLevelStairKey) {
   EXPECT_NE(range.find("'stair.landing_min_depth_m' = -1 is out of range"), std::string::npos) << range;
 }
 
+// The camera's mount on a robot is the top-level "mount" object (issue 15).
+TEST(PerceptionConfig, TheMountIsTheTopLevelMountObject) {
+  const PerceptionConfig c =
+      load_perception_config(write_temp(R"({"mount": {"height_m": 0.45, "pitch_deg": -20}})"));
+  EXPECT_FLOAT_EQ(c.mount.height_m, 0.45f);
+  EXPECT_FLOAT_EQ(c.mount.pitch_deg, -20.0f);
+  EXPECT_TRUE(c.mount.configured());
+  EXPECT_FALSE(PerceptionConfig{}.mount.configured());
+  const std::string e = load_error(R"({"mount": {"height": 0.45}})");
+  EXPECT_NE(e.find("unknown key 'mount.height'"), std::string::npos) << e;
+}
+
 // --print-config's JSON read back gives the same values: one field list serves both.
 TEST(PerceptionConfig, PrintedConfigReadsBackToTheSameValues) {
   PerceptionConfig c;

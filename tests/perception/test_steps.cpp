@@ -106,8 +106,8 @@ TEST(PerceptionCameraHeight, AMountNamesTheGroundOnlyAtItsHeightAndTilt) {
   const DepthImage frame = test::render_stairs(640, 480, -35, 0, 1.0, 4, 1.3);
   const auto height = [&](float mount_m, float pitch_deg) {
     PerceptionConfig cfg;
-    cfg.camera_height.mount_height_m = mount_m;
-    cfg.camera_height.mount_pitch_deg = pitch_deg;
+    cfg.mount.height_m = mount_m;
+    cfg.mount.pitch_deg = pitch_deg;
     return Pipeline(cfg).process(frame).camera.height_m;
   };
   ASSERT_TRUE(height(1.0f, -35.0f).has_value());
