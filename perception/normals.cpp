@@ -1,7 +1,5 @@
 #include "perception/normals.hpp"
 
-#include "common/cloud.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -118,6 +116,7 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
 // A row of cells (normal and depth, struct-of-arrays) and its neighbours at one offset.
 struct RowView {
   const float *nx, *ny, *nz, *z;
+  RowView at(int offset) const { return {nx + offset, ny + offset, nz + offset, z + offset}; }
 };
 
 // Adds each neighbour's normal to its cell's sum when both lie on one surface.
@@ -214,7 +213,7 @@ void raw_normals(const NormalsConfig& cfg, NormalGrid& g) {
   }
   for (size_t i = 0; i < g.normals.size(); ++i) {
     g.has_normal[i] = s.nx[i] != 0.0f || s.ny[i] != 0.0f || s.nz[i] != 0.0f;
-    g.normals[i] = {s.nx[i], s.ny[i], s.nz[i]};
+    if (!cfg.smooth) g.normals[i] = {s.nx[i], s.ny[i], s.nz[i]};  // else smooth_normals writes them
   }
 }
 
@@ -228,15 +227,13 @@ void smooth_normals(const NormalsConfig& cfg, NormalGrid& g) {
   for (auto* v : {&sc.sx, &sc.sy, &sc.sz}) v->assign(n, 0.0f);
   const float cos_smooth = std::cos(cfg.smooth_max_angle_deg * static_cast<float>(M_PI) / 180.0f);
   const float jump = cfg.jump_ratio * 2 * cfg.radius_cells;
+  const RowView all{sc.nx.data(), sc.ny.data(), sc.nz.data(), sc.z.data()};
   for (int gy = 1; gy < g.height - 1; ++gy) {
     const int c0 = gy * g.width + 1, count = g.width - 2;
     for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int k0 = c0 + dy * g.width + dx;
-        smooth_row({sc.nx.data() + c0, sc.ny.data() + c0, sc.nz.data() + c0, sc.z.data() + c0},
-                   {sc.nx.data() + k0, sc.ny.data() + k0, sc.nz.data() + k0, sc.z.data() + k0}, count, cos_smooth,
-                   jump, sc.sx.data() + c0, sc.sy.data() + c0, sc.sz.data() + c0);
-      }
+      for (int dx = -1; dx <= 1; ++dx)
+        smooth_row(all.at(c0), all.at(c0 + dy * g.width + dx), count, cos_smooth, jump, sc.sx.data() + c0,
+                   sc.sy.data() + c0, sc.sz.data() + c0);
   }
   for (size_t i = 0; i < n; ++i)
     if (g.has_normal[i]) g.normals[i] = Eigen::Vector3f(sc.sx[i], sc.sy[i], sc.sz[i]).normalized();
