@@ -46,7 +46,10 @@ void add_setup_options(Options& o) {
       .add("nosing", "M", "override: nosing overhang")
       .add("walls", "SIDES", "override: side walls none|left|right|both")
       .add("direction", "DIR", "up or down; auto = down for presets named *_down", "auto")
-      .add("situation", "S", "approach|first_step|flight|landing|full", "full")
+      .add("situation", "S",
+           "approach|first_step|flight|landing|full, or round_trip: the whole stair, a half turn on the spot on "
+           "the far landing (4 s) and back",
+           "full")
       .add("carrier", "C", "handheld (1 m high, pitch -35 deg, gait wobble) or robot (0.45 m, pitching with the slope)",
            "handheld")
       .add("speed", "M/S", "walking speed along the path (carrier default: handheld 0.6, robot 0.3)")

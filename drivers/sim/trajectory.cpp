@@ -68,7 +68,8 @@ Situation situation_from_name(const std::string& n) {
   if (n == "flight") return Situation::Flight;
   if (n == "landing") return Situation::Landing;
   if (n == "full") return Situation::Full;
-  throw std::invalid_argument("unknown situation '" + n + "' (approach, first_step, flight, landing, full)");
+  if (n == "round_trip") return Situation::RoundTrip;
+  throw std::invalid_argument("unknown situation '" + n + "' (approach, first_step, flight, landing, full, round_trip)");
 }
 
 Carrier carrier_from_name(const std::string& n) {
@@ -84,6 +85,7 @@ std::string situation_name(Situation s) {
     case Situation::Flight: return "flight";
     case Situation::Landing: return "landing";
     case Situation::Full: return "full";
+    case Situation::RoundTrip: return "round_trip";
   }
   return "?";
 }
@@ -105,6 +107,7 @@ Trajectory::Trajectory(const Scene& scene, const TrajectoryConfig& c) : scene_(s
       case Situation::Flight: x0_ = e.bottom_x, x1_ = e.top_x; break;
       case Situation::Landing: x0_ = e.top_x - 2.0 * e.last_tread, x1_ = e.top_x + 1.2; break;
       case Situation::Full: x0_ = e.bottom_x - c.approach_m, x1_ = hi; break;
+      case Situation::RoundTrip: x0_ = e.bottom_x - c.approach_m, x1_ = e.top_x + 0.8; break;
     }
   } else {
     switch (sit) {
@@ -113,11 +116,28 @@ Trajectory::Trajectory(const Scene& scene, const TrajectoryConfig& c) : scene_(s
       case Situation::Flight: x0_ = e.top_x, x1_ = e.bottom_x; break;
       case Situation::Landing: x0_ = e.bottom_x + 2.0 * e.first_tread, x1_ = e.bottom_x - 1.2; break;
       case Situation::Full: x0_ = e.top_x + c.approach_m, x1_ = e.bottom_x - c.approach_m; break;
+      case Situation::RoundTrip: x0_ = e.top_x + c.approach_m, x1_ = e.bottom_x - 0.8; break;
     }
   }
   x0_ = std::clamp(x0_, lo, hi);
   x1_ = std::clamp(x1_, lo, hi);
-  frames_ = 1 + static_cast<int>(std::floor(std::abs(x1_ - x0_) / c.speed_mps * c.fps));
+  if (sit == Situation::RoundTrip && !(c.turn_s > 0.0)) throw std::invalid_argument("trajectory: turn_s must be positive");
+  const double duration_s = sit == Situation::RoundTrip ? 2.0 * leg_s() + c.turn_s : leg_s();
+  round_trip_ = sit == Situation::RoundTrip;
+  frames_ = 1 + static_cast<int>(std::floor(duration_s * c.fps));
+}
+
+double Trajectory::leg_s() const { return std::abs(x1_ - x0_) / config_.speed_mps; }
+
+Trajectory::PathPoint Trajectory::path_at(double t) const {
+  const double dir = x1_ >= x0_ ? 1.0 : -1.0;
+  const double heading = (config_.descending ? 180.0 : 0.0) + config_.yaw_deg;
+  const auto along = [&](double from, double sense, double dt) {
+    return std::clamp(from + sense * config_.speed_mps * dt, std::min(x0_, x1_), std::max(x0_, x1_));
+  };
+  if (!round_trip_ || t <= leg_s()) return {along(x0_, dir, t), heading, dir};
+  if (t < leg_s() + config_.turn_s) return {x1_, heading + 180.0 * (t - leg_s()) / config_.turn_s, 0.0};
+  return {along(x1_, -dir, t - leg_s() - config_.turn_s), heading + 180.0, -dir};
 }
 
 double Trajectory::smoothed_surface_m(double x, double y) const {
@@ -133,11 +153,11 @@ double Trajectory::smoothed_surface_m(double x, double y) const {
 
 Eigen::Isometry3d Trajectory::pose_at(double t) const {
   const TrajectoryConfig& c = config_;
-  const double dir = x1_ >= x0_ ? 1.0 : -1.0;
-  const double x = std::clamp(x0_ + dir * c.speed_mps * t, std::min(x0_, x1_), std::max(x0_, x1_));
+  const PathPoint at = path_at(t);
+  const double x = at.x_m;
   double y = c.lateral_m;
   double z = smoothed_surface_m(x, y) + c.height_m;
-  double yaw = (c.descending ? 180.0 : 0.0) + c.yaw_deg;
+  double yaw = at.heading_deg;
   double pitch = c.pitch_deg, roll = 0.0;
   const double w = c.wobble;
   if (c.carrier == Carrier::HandHeld) {
@@ -149,7 +169,7 @@ Eigen::Isometry3d Trajectory::pose_at(double t) const {
     yaw += wave(1.5 * w, 0.35, 2.0, t);
   } else {
     // The body pitches with the slope under it along the heading.
-    const double heading = c.descending ? -1.0 : 1.0;
+    const double heading = std::cos(yaw * kRad) >= 0 ? 1.0 : -1.0;
     const double slope = (smoothed_surface_m(x + 0.05 * heading, y) - smoothed_surface_m(x - 0.05 * heading, y)) / 0.1;
     pitch += std::atan(slope) / kRad;
     pitch += wave(0.3 * w, 3.0, 0.0, t);

@@ -1,6 +1,8 @@
 // Camera trajectories through a scene for the thesis' four situations
 // (approaching the first step, traversing the first step, traversing the
-// flight, landing), ascending or descending, hand-held or robot-mounted.
+// flight, landing), ascending or descending, hand-held or robot-mounted; and
+// a round trip: up (or down) the whole stair, a turn on the spot on the far
+// landing, and back the same way (issue 15: turning around on a landing).
 #pragma once
 
 #include "drivers/sim/scene.hpp"
@@ -19,7 +21,7 @@ namespace stairs::sim {
 Eigen::Isometry3d camera_pose(const Eigen::Vector3d& position_m, double yaw_deg, double pitch_deg, double roll_deg);
 
 enum class Carrier { HandHeld, Robot };
-enum class Situation { Approach, FirstStep, Flight, Landing, Full };
+enum class Situation { Approach, FirstStep, Flight, Landing, Full, RoundTrip };
 
 struct TrajectoryConfig {
   Carrier carrier = Carrier::HandHeld;
@@ -33,13 +35,14 @@ struct TrajectoryConfig {
   double yaw_deg = 0.0;     // heading offset from straight up (or down) the stair
   double wobble = 1.0;      // scale of the gait wobble / robot vibration, 0 = steady
   double approach_m = 3.0;  // distance to the first edge where Approach and Full begin
+  double turn_s = 4.0;      // round trip: seconds for the half turn on the spot (45 deg/s)
 };
 
 // Defaults of a carrier: hand-held 1.0 m high, pitch -35 deg; robot 0.45 m
 // high, camera pitched -20 deg on a body that pitches with the slope.
 TrajectoryConfig trajectory_defaults(Carrier carrier);
 
-Situation situation_from_name(const std::string& name);  // approach, first_step, flight, landing, full
+Situation situation_from_name(const std::string& name);  // approach, first_step, flight, landing, full, round_trip
 Carrier carrier_from_name(const std::string& name);      // handheld, robot
 std::string situation_name(Situation s);
 std::string carrier_name(Carrier c);
@@ -58,11 +61,18 @@ class Trajectory {
 
  private:
   double smoothed_surface_m(double x, double y) const;
+  // Along-x position, heading (deg from +x) and the sense of travel at t.
+  struct PathPoint {
+    double x_m, heading_deg, travel;  // travel: +1 along +x, -1 along -x, 0 turning on the spot
+  };
+  PathPoint path_at(double t_s) const;
+  double leg_s() const;  // one way of the path, walking
 
   Scene scene_;
   TrajectoryConfig config_;
   double x0_ = 0.0, x1_ = 0.0;
   int frames_ = 0;
+  bool round_trip_ = false;
 };
 
 }  // namespace stairs::sim

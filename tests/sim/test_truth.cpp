@@ -127,3 +127,28 @@ TEST(SimTruth, ScenarioJsonRoundTripsAndNamesBadKeys) {
   }
   EXPECT_THROW(make_preset("spiral"), std::invalid_argument);
 }
+
+// A round trip: up the whole flight, a half turn on the spot on the top landing
+// (the height stays that of the landing, the heading turns through 180 deg),
+// and back down to where it started, facing the other way.
+TEST(SimTruth, RoundTripTurnsOnTheTopLandingAndComesBack) {
+  const Scene s = make_preset("straight_up");
+  TrajectoryConfig c = trajectory_defaults(Carrier::Robot);
+  c.situation = Situation::RoundTrip;
+  c.wobble = 0;
+  const Trajectory traj(s, c);
+  const Eigen::Isometry3d first = traj.pose(0), last = traj.pose(traj.frames() - 1);
+  const double top_z = step_geometry(s).back().top_z_m;
+  const double leg_s = (traj.end_x_m() - traj.start_x_m()) / c.speed_mps;
+  EXPECT_NEAR(traj.frames() / c.fps, 2 * leg_s + c.turn_s, 0.2);
+  EXPECT_NEAR(last.translation().x(), first.translation().x(), 0.05);
+  EXPECT_NEAR(last.translation().z(), first.translation().z(), 1e-6);
+  // Optical axes: forward up the stair at the start, down it at the end.
+  EXPECT_GT(first.linear().col(2).x(), 0.9);
+  EXPECT_LT(last.linear().col(2).x(), -0.9);
+  for (double f : {0.1, 0.5, 0.9}) {
+    const Eigen::Isometry3d T = traj.pose_at(leg_s + f * c.turn_s);
+    EXPECT_NEAR(T.translation().x(), traj.end_x_m(), 1e-9);
+    EXPECT_NEAR(T.translation().z(), top_z + c.height_m, 1e-6);
+  }
+}
