@@ -222,6 +222,12 @@ struct DepthJumpEdgesConfig {
   int max_lines_per_group = 3;     // lines fitted per height group
   float max_tilt_deg = 10.0f;      // deg; a step edge is horizontal within this
   float max_axis_deg = 20.0f;      // deg; and across the stair axis within this
+  float refine_max_m = 0.05f;      // m; a jump placed at its pixel row moves at most this far from the
+                                   // cell's mean point (about a cell at 2 m; farther means a bad normal)
+  float level_tol_deg = 30.0f;     // deg; a near cell whose normal is this close to up is a tread: its
+                                   // row is placed on the level, the cell's own normal bends at the edge
+  float row_tolerance_m = 0.01f;   // m; a pixel within this (+ the next term) of the near surface is on it
+  float row_tolerance_per_m2 = 0.004f;  // per m^2 of depth: the sensors' noise grows as z^2 (thesis 2.2)
 
   template <class V>
   void visit(V& v) {
@@ -235,6 +241,10 @@ struct DepthJumpEdgesConfig {
     v("max_lines_per_group", max_lines_per_group, 1, 100);
     v("max_tilt_deg", max_tilt_deg, 0.0f, 90.0f);
     v("max_axis_deg", max_axis_deg, 0.0f, 90.0f);
+    v("refine_max_m", refine_max_m, 0.0f, 1.0f);
+    v("level_tol_deg", level_tol_deg, 0.0f, 90.0f);
+    v("row_tolerance_m", row_tolerance_m, 0.0f, 1.0f);
+    v("row_tolerance_per_m2", row_tolerance_per_m2, 0.0f, 1.0f);
   }
 };
 

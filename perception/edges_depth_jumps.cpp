@@ -11,16 +11,65 @@ namespace stairs {
 
 namespace {
 
+constexpr float kMinIncidence = 0.1f;  // cos of the ray's angle to the surface normal: below, ~84 deg, grazing
+
 struct JumpPoint {
-  Eigen::Vector3f q;  // gravity-aligned camera frame
+  Eigen::Vector3f q;       // gravity-aligned camera frame: the near cell's mean point
+  Eigen::Vector3f nosing;  // the same, placed at the jump's pixel row (q where that fails)
   Eigen::Vector2f px;
 };
 
+// The near side of a jump: the plane through the near cell's point; a
+// level one where the cell's normal is near up (a tread at its nosing: the
+// cell's own normal bends across the edge).
+struct NearSurface {
+  Eigen::Vector3f p, n;  // optical frame
+  // Depth along the optical axis where the ray through pixel (u, v) meets it; <= 0 if it does not.
+  float depth_at(const Intrinsics& K, float u, float v) const {
+    const Eigen::Vector3f ray((u - K.cx) / K.fx, (v - K.cy) / K.fy, 1.0f);
+    const float den = n.dot(ray);
+    return std::abs(den) > kMinIncidence * ray.norm() ? n.dot(p) / den : -1.0f;
+  }
+};
+
+// Where a jump runs through a near cell at pixel resolution: in each pixel
+// column of the cell, the upper edge of the last pixel (going up the image)
+// that the near surface explains, before one beyond the middle of the jump
+// (pixels in between, the flying pixels of a time-of-flight sensor, are
+// neither); the mean over the columns, or NaN. The cell's mean point lies
+// inside its near part, about half a cell short of the nosing.
+float jump_row_px(const DepthImage& f, const NearSurface& near, int u0, int cols, int v_bottom, int v_top,
+                  float far_m, const DepthJumpEdgesConfig& cfg) {
+  const float mid = 0.5f * (near.p.z() + far_m);
+  float sum = 0.0f;
+  int n = 0;
+  for (int u = u0; u < std::min(u0 + cols, f.K.width); ++u) {
+    int last_near = -1;
+    for (int v = std::min(v_bottom, f.K.height - 1); v >= std::max(v_top, 0); --v) {
+      const float d = f.metres(u, v);
+      if (d <= 0.0f) continue;  // no measurement (the shadow): look further up
+      if (d >= mid) {
+        if (last_near >= 0) sum += static_cast<float>(last_near) - 0.5f, ++n;
+        break;
+      }
+      const float expected = near.depth_at(f.K, static_cast<float>(u), static_cast<float>(v));
+      if (std::abs(d - expected) <= cfg.row_tolerance_m + cfg.row_tolerance_per_m2 * expected * expected)
+        last_near = v;
+    }
+  }
+  return n > 0 ? sum / static_cast<float>(n) : std::nanf("");
+}
+
 // The near cells of jumps to a farther cell above them in the image, across at
-// most cfg.gap_cells cells without a measurement (the projector's shadow).
-std::vector<JumpPoint> jump_points(const NormalGrid& g, const Eigen::Matrix3f& R, const DepthJumpEdgesConfig& cfg) {
+// most cfg.gap_cells cells without a measurement (the projector's shadow);
+// each also placed where the ray through the jump's pixel row meets the near
+// surface (else at the cell's mean point).
+std::vector<JumpPoint> jump_points(const NormalGrid& g, const DepthImage& f, const Eigen::Matrix3f& R,
+                                   const DepthJumpEdgesConfig& cfg) {
   std::vector<JumpPoint> out;
   const float half = 0.5f * static_cast<float>(g.cell_px);
+  const Eigen::Vector3f up = R.row(2).transpose();  // optical frame
+  const float level_cos = std::cos(cfg.level_tol_deg * static_cast<float>(M_PI) / 180.0f);
   for (int gx = 0; gx < g.width; ++gx) {
     for (int gy = 1; gy < g.height; ++gy) {
       const int c = g.index(gx, gy);
@@ -30,7 +79,20 @@ std::vector<JumpPoint> jump_points(const NormalGrid& g, const Eigen::Matrix3f& R
       if (above < 0 || !g.has_point[g.index(gx, above)]) continue;
       const float zc = g.points[c].z(), zf = g.points[g.index(gx, above)].z();
       if (zf - zc < std::max(cfg.jump_min_m, cfg.jump_ratio * zc)) continue;
-      out.push_back({R * g.points[c], {gx * g.cell_px + half, gy * g.cell_px + half}});
+      const Eigen::Vector3f& p = g.points[c];
+      Eigen::Vector3f at_row = p;
+      const Eigen::Vector2f px(gx * g.cell_px + half, gy * g.cell_px + half);
+      if (g.has_normal[c]) {
+        const NearSurface near{p, std::abs(g.normals[c].dot(up)) > level_cos ? up : g.normals[c]};
+        const float v = jump_row_px(f, near, gx * g.cell_px, g.cell_px, (gy + 1) * g.cell_px - 1, above * g.cell_px,
+                                    zf, cfg);
+        const float depth = std::isfinite(v) ? near.depth_at(f.K, px.x(), v) : -1.0f;
+        if (depth > 0) {
+          const Eigen::Vector3f hit((px.x() - f.K.cx) / f.K.fx * depth, (v - f.K.cy) / f.K.fy * depth, depth);
+          if ((hit - p).norm() < cfg.refine_max_m) at_row = hit;
+        }
+      }
+      out.push_back({R * p, R * at_row, px});
     }
   }
   return out;
@@ -120,9 +182,9 @@ Line3 refit(const GroupPoints& g, const std::vector<int>& inliers) {
 
 }  // namespace
 
-std::vector<JumpEdge> depth_jump_edges(const NormalGrid& g, const Eigen::Matrix3f& R, float yaw_rad,
-                                       const DepthJumpEdgesConfig& cfg, float min_length_m) {
-  std::vector<JumpPoint> pts = jump_points(g, R, cfg);
+std::vector<JumpEdge> depth_jump_edges(const NormalGrid& g, const DepthImage& frame, const Eigen::Matrix3f& R,
+                                       float yaw_rad, const DepthJumpEdgesConfig& cfg, float min_length_m) {
+  std::vector<JumpPoint> pts = jump_points(g, frame, R, cfg);
   std::sort(pts.begin(), pts.end(), [](const JumpPoint& a, const JumpPoint& b) { return a.q.z() < b.q.z(); });
   const float deg = static_cast<float>(M_PI) / 180.0f;
   const Eigen::Vector3f axis(std::cos(yaw_rad), std::sin(yaw_rad), 0.0f);
@@ -164,11 +226,12 @@ std::vector<JumpEdge> depth_jump_edges(const NormalGrid& g, const Eigen::Matrix3
       if (std::abs(dir.z()) > std::sin(cfg.max_tilt_deg * deg) ||
           std::abs(dir.dot(axis)) > std::sin(cfg.max_axis_deg * deg))
         continue;
-      std::vector<float> ts, ss, zs;
+      std::vector<float> ts, ss, zs, ns;
       for (int i : line) {
         ts.push_back(lateral.dot(pts[i].q));
         ss.push_back(axis.dot(pts[i].q));
         zs.push_back(pts[i].q.z());
+        ns.push_back(axis.dot(pts[i].nosing));
       }
       const auto [lo, hi] = std::minmax_element(ts.begin(), ts.end());
       if (*hi - *lo < min_length_m) continue;
@@ -176,7 +239,9 @@ std::vector<JumpEdge> depth_jump_edges(const NormalGrid& g, const Eigen::Matrix3
       std::nth_element(ss.begin(), ss.begin() + mid, ss.end());
       std::nth_element(zs.begin(), zs.begin() + mid, zs.end());
       JumpEdge e;
+      std::nth_element(ns.begin(), ns.begin() + mid, ns.end());
       e.s = ss[mid];
+      e.nosing_s = ns[mid];
       e.z = zs[mid];
       e.t_min = *lo;
       e.t_max = *hi;

@@ -15,13 +15,15 @@ namespace stairs {
 // the stair axis, t lateral, z up; m) with its end points in the
 // gravity-aligned camera frame.
 struct JumpEdge {
-  float s = 0, z = 0, t_min = 0, t_max = 0;
+  float s = 0, z = 0, t_min = 0, t_max = 0;  // of the near cells' mean points
+  float nosing_s = 0;  // the edge itself along the axis: the near cells placed at the jump's pixel row
   Edge edge;  // the observation's edge (source DepthJump, type Convex)
 };
 
-// Nosings seen from above (thesis 3.4): near sides of depth jumps, grouped by height, a RANSAC
-// line per group; kept if horizontal, across the stair axis and at least `min_length_m`. Highest first.
-std::vector<JumpEdge> depth_jump_edges(const NormalGrid& grid, const Eigen::Matrix3f& gravity, float yaw_rad,
-                                       const DepthJumpEdgesConfig& cfg, float min_length_m);
+// Nosings seen from above (thesis 3.4): near sides of depth jumps, grouped by height, a RANSAC line
+// per group; kept if horizontal, across the stair axis and at least `min_length_m`; nosing_s from the
+// jump's pixel rows in `frame` (the depth the grid was made of). Highest first.
+std::vector<JumpEdge> depth_jump_edges(const NormalGrid& grid, const DepthImage& frame, const Eigen::Matrix3f& gravity,
+                                       float yaw_rad, const DepthJumpEdgesConfig& cfg, float min_length_m);
 
 }  // namespace stairs

@@ -82,7 +82,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   PlaneSet ps = plane_geometry(grid_, segments, R, cfg_.plane_geometry, cfg_.output);
   clock.mark("plane_geometry");
   const std::vector<JumpEdge> jump_edges =
-      depth_jump_edges(grid_, R, ps.yaw_rad, cfg_.edges_depth_jumps, cfg_.stair.min_step_width_m);
+      depth_jump_edges(grid_, frame, R, ps.yaw_rad, cfg_.edges_depth_jumps, cfg_.stair.min_step_width_m);
   clock.mark("edges_depth_jumps");
   std::vector<Edge> normal_edges;
   if (cfg_.edges_normal_image.enabled) {  // a diagnostic: nothing below reads these edges

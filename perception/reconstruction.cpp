@@ -104,7 +104,7 @@ void complete_descending(const PlaneSet& ps, const StairChain& chain, std::vecto
   s.tread_plane = last.plane;
   s.riser_height_m = median_rise(steps);
   s.inferred |= kStepRiserInferred;
-  s.nosing_m = ps.to_camera(last.s_max, 0.5f * (last.t_min + last.t_max), last.z).cast<double>();
+  s.nosing_m = ps.to_camera(last.edge_s, 0.5f * (last.t_min + last.t_max), last.z).cast<double>();
   s.width_m = last.t_max - last.t_min;
   steps.push_back(s);
 }

@@ -27,7 +27,7 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
     for (size_t k = 0; k < n_treads && !seen; ++k)
       seen = levels[k].z > e.z_max - same_level && levels[k].z < e.z_max + min_rise_m &&
              levels[k].s_max > e.s_mean - behind && levels[k].s_min < e.s_mean + ahead;
-    if (!seen) levels.push_back({-1, e.z_max, e.s_mean, e.s_mean, e.t_min, e.t_max, false, true});
+    if (!seen) levels.push_back({-1, e.z_max, e.s_mean, e.s_mean, e.t_min, e.t_max, false, 0.0f, true});
   }
   // Likewise far treads seen from above are strips too thin for planes, but
   // their nosings show as depth jumps: the tread ends there.
@@ -36,9 +36,11 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
     for (size_t k = 0; k < n_treads && !seen; ++k) {
       seen = std::abs(levels[k].z - j.z) < same_level && levels[k].s_max > j.s - ahead &&
              levels[k].s_min < j.s + behind;
+      // The farthest edge that ends it (a tread holds one nosing).
+      if (seen && (!levels[k].far_edge || j.nosing_s > levels[k].edge_s)) levels[k].edge_s = j.nosing_s;
       levels[k].far_edge = levels[k].far_edge || seen;
     }
-    if (!seen) levels.push_back({-1, j.z, j.s, j.s, j.t_min, j.t_max, true});
+    if (!seen) levels.push_back({-1, j.z, j.s, j.s, j.t_min, j.t_max, true, j.nosing_s});
   }
   for (Level& l : levels) {
     if (l.plane < 0) continue;
@@ -64,7 +66,9 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
     Step s;
     s.tread_plane = tread.plane;
     s.riser_height_m = tread.z - below.z;
-    float nosing_s = up ? tread.s_min : tread.s_max;
+    // Going down the nosing is the depth jump at the tread's far end where one
+    // shows it: the plane's trimmed extent stops short of the edge's cells.
+    float nosing_s = up ? tread.s_min : tread.far_edge ? tread.edge_s : tread.s_max;
     // The riser whose face lies at the nosing line, spanning the rise.
     s.riser_plane = find_riser(ps, nosing_s - cfg.riser_at_nosing_m, nosing_s + cfg.riser_at_nosing_m, nosing_s,
                                [&](const PlaneExtent& e) { return e.z_max >= below.z && e.z_min <= tread.z; });

@@ -13,6 +13,7 @@ struct Level {
   int plane = -1;
   float z = 0, s_min = 0, s_max = 0, t_min = 0, t_max = 0;
   bool far_edge = false;    // a depth-jump edge ends it (its nosing, seen from above)
+  float edge_s = 0;         // where that edge lies along the axis (valid with far_edge)
   bool riser_top = false;   // the top of a riser facing the camera (a tread seen edge-on)
   // How far its plane's heights (trimmed percentiles) reach below and above z;
   // 0 for an edge's level.

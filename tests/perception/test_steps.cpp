@@ -75,9 +75,11 @@ TEST(PerceptionGrammar, DescendingChainFromTheLanding) {
 TEST(PerceptionReconstruction, AMidLandingEndingInADropIsTheLastStepGoingDown) {
   // The same flight seen from above, but its last level ends in a depth jump
   // 1.3 m on: a landing with the next flight below its edge, not the floor.
+  // The jump lies 2 cm beyond the plane's trimmed extent: the nosing is the jump.
   std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), level(-1.17f, 1.6f, 1.78f), level(-1.34f, 1.9f, 2.06f),
                                level(-1.51f, 2.2f, 3.5f)};
   levels.back().far_edge = true;
+  levels.back().edge_s = 3.52f;
   const StairConfig cfg;
   const StairChain ch = best_chain(levels, cfg);
   ASSERT_EQ(ch.steps(), 3);
@@ -86,9 +88,9 @@ TEST(PerceptionReconstruction, AMidLandingEndingInADropIsTheLastStepGoingDown) {
   reconstruct(ps, ch, steps, cfg);
   ASSERT_EQ(steps.size(), 4u);
   EXPECT_TRUE(steps[3].landing);
-  EXPECT_NEAR(steps[3].nosing_m.x(), 3.5, 1e-5);
+  EXPECT_NEAR(steps[3].nosing_m.x(), 3.52, 1e-5);
   EXPECT_NEAR(steps[3].nosing_m.z(), -1.51, 1e-5);
-  EXPECT_NEAR(*steps[3].tread_depth_m, 3.5 - 2.06, 1e-5);
+  EXPECT_NEAR(*steps[3].tread_depth_m, 3.52 - 2.06, 1e-5);
   EXPECT_NEAR(*steps[3].riser_height_m, 0.17, 1e-5);  // the chain's median: its riser is out of view
 }
 
