@@ -48,7 +48,14 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
   const double median = median_rise(steps);
   const Level& base = chain.levels.front();
   const float contact = cfg.riser_contact_m;
-  if (const int r = riser_at(ps, base.s_min - 2 * contact, base.s_min + 2 * contact, base.z, false, contact, contact);
+  // A riser whose bottom the image's lower border cuts off: a sliver of it is
+  // as good as more (as the top riser's below).
+  const float sliver = static_cast<float>(cfg.min_riser_seen_fraction * median);
+  if (const int r = find_riser(ps, base.s_min - 2 * contact, base.s_min + 2 * contact, base.s_min,
+                               [&](const PlaneExtent& e) {
+                                 return std::abs(e.z_max - base.z) < contact &&
+                                        e.z_min < base.z - (e.bottom_in_view ? contact : sliver);
+                               });
       r >= 0) {
     Step s;
     s.riser_plane = r;

@@ -241,5 +241,47 @@ TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
   EXPECT_EQ(steps.size(), 2u);
 }
 
+TEST(PerceptionReconstruction, ASliverOfRiserCutByTheBottomOfTheViewMakesTheFirstLevelAStep) {
+  // Looking down a flight from above it: three treads, the risers between
+  // them, and under the first tread's front edge 4 cm of its riser before the
+  // image's lower border (the tread below is out of view).
+  PlaneSet ps;
+  auto add = [&](PlaneKind kind, const PlaneExtent& e) { add_plane(ps, kind, e); };
+  for (int k = 0; k < 3; ++k) {
+    const float z = -0.6f + 0.18f * k, s0 = 0.4f + 0.25f * k;
+    add(PlaneKind::Tread, {s0, s0 + 0.23f, -0.5f, 0.5f, z, z, s0 + 0.115f, z});
+  }
+  for (int k = 1; k < 3; ++k) {
+    const float s = 0.4f + 0.25f * k, z0 = -0.6f + 0.18f * (k - 1);
+    add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.18f, s, z0 + 0.09f});
+  }
+  PlaneExtent sliver{0.4f, 0.4f, -0.5f, 0.5f, -0.64f, -0.6f, 0.4f, -0.62f};
+  sliver.bottom_in_view = false;
+  add(PlaneKind::Riser, sliver);
+  const StairConfig cfg;
+  const StairChain chain = best_chain(tread_levels(ps, {}, cfg), cfg);
+  ASSERT_EQ(chain.direction, Direction::Up);
+  std::vector<Step> steps = steps_from_chain(ps, chain, cfg);
+  ASSERT_EQ(steps.size(), 2u);
+  reconstruct(ps, chain, steps, cfg);
+  ASSERT_EQ(steps.size(), 3u);
+  EXPECT_EQ(steps[0].riser_plane, 5);
+  EXPECT_NEAR(steps[0].nosing_m.x(), 0.4, 1e-4);
+  EXPECT_NEAR(*steps[0].riser_height_m, 0.18, 1e-3);  // the chain's median, flagged
+  EXPECT_TRUE(steps[0].inferred & kStepRiserInferred);
+
+  // The same 4 cm with its bottom in view is a riser that short, no step's.
+  ps.extents[5].bottom_in_view = true;
+  steps = steps_from_chain(ps, chain, cfg);
+  reconstruct(ps, chain, steps, cfg);
+  EXPECT_EQ(steps.size(), 2u);
+  // Cut by the border, less than min_riser_seen_fraction of a rise is no step either.
+  ps.extents[5].bottom_in_view = false;
+  ps.extents[5].z_min = ps.extents[5].z_max - 0.5f * cfg.min_riser_seen_fraction * 0.18f;
+  steps = steps_from_chain(ps, chain, cfg);
+  reconstruct(ps, chain, steps, cfg);
+  EXPECT_EQ(steps.size(), 2u);
+}
+
 }  // namespace
 }  // namespace stairs
