@@ -179,6 +179,8 @@ struct GravityConfig {
                                              // fraction of the largest vertical family yield to it
   float second_family_min_angle_deg = 30.0f;  // deg; a second vertical family (risers and a wall) must
                                               // turn this far from the first for up = their cross product
+  float consensus_deg = 1.5f;  // deg; a segment agrees with an up when parallel or perpendicular to it within
+                               // this: a large plane's normal is good to a fraction of it, a bent tread is not
 
   template <class V>
   void visit(V& v) {
@@ -188,6 +190,7 @@ struct GravityConfig {
     v("prior_max_gap_s", prior_max_gap_s, 0.0, 3600.0);
     v("min_support_fraction", min_support_fraction, 0.0f, 1.0f);
     v("second_family_min_angle_deg", second_family_min_angle_deg, 1.0f, 90.0f);
+    v("consensus_deg", consensus_deg, 0.01f, 45.0f);
   }
 };
 

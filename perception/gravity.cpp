@@ -35,6 +35,44 @@ std::optional<Family> best_family(const std::vector<Segment>& segments, float co
   return Family{best.normalized(), best_support};
 }
 
+// Up as most planes agree on it: horizontal segments parallel to it, vertical
+// ones (risers, walls) perpendicular. Each member of the chosen family is a
+// candidate, scored by the cells of the segments within cfg.consensus_deg of
+// agreeing with it; up is the mean over the best one's parallel agreeing
+// segments. The family's mean alone is pulled by a plane that is bent as a
+// whole (a tread seen only in a time-of-flight sensor's multipath band; thesis
+// 3.5 averages the family).
+Eigen::Vector3f consensus_up(const std::vector<Segment>& segments, const Eigen::Vector3f& family_up, float cos_par,
+                             const GravityConfig& cfg) {
+  const float sin_agree = std::sin(cfg.consensus_deg * static_cast<float>(M_PI) / 180.0f);
+  const float cos_agree = std::sqrt(1.0f - sin_agree * sin_agree);
+  auto agrees = [&](const Segment& s, const Eigen::Vector3f& u) {
+    const float c = std::abs(s.normal.dot(u));
+    return c >= cos_agree || c <= sin_agree;
+  };
+  Eigen::Vector3f best = family_up;
+  float best_score = -1.0f;
+  auto score = [&](const Eigen::Vector3f& u) {
+    float sc = 0.0f;
+    for (const Segment& s : segments)
+      if (agrees(s, u)) sc += static_cast<float>(s.cells.size());
+    return sc;
+  };
+  best_score = score(family_up);
+  for (const Segment& c : segments) {
+    if (c.normal.dot(family_up) < cos_par) continue;
+    const float sc = score(c.normal);
+    if (sc > best_score) best_score = sc, best = c.normal;
+  }
+  // The support-weighted mean of the horizontal segments that agree with it
+  // (vertical ones choose, they do not average: risers' normals are the
+  // noisier, bent at both of their edges).
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  for (const Segment& s : segments)
+    if (s.normal.dot(best) >= cos_agree) sum += static_cast<float>(s.cells.size()) * s.normal;
+  return sum.normalized();
+}
+
 }  // namespace
 
 std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const GravityConfig& cfg,
@@ -49,7 +87,7 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   const auto horizontal = best_family(segments, cos_par, [&](const Eigen::Vector3f& n) {
     return n.dot(image_up) >= cos_tilt && (!prior || n.dot(*prior) >= cos_prior);
   });
-  if (!prior) return horizontal ? std::optional(horizontal->normal) : std::nullopt;
+  if (!prior) return horizontal ? std::optional(consensus_up(segments, horizontal->normal, cos_par, cfg)) : std::nullopt;
   // Vertical planes (risers, walls) fix up too, perpendicular to their
   // normals: used when the treads near the prior are missing or too small to
   // trust beside them (a robot looking up a flight sees thin treads, if any).
@@ -57,7 +95,7 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   auto vertical = [&](const Eigen::Vector3f& n) { return std::abs(n.dot(*prior)) < sin_prior; };
   const auto v1 = best_family(segments, cos_par, vertical);
   if (horizontal && (!v1 || horizontal->support >= cfg.min_support_fraction * v1->support))
-    return horizontal->normal;
+    return consensus_up(segments, horizontal->normal, cos_par, cfg);
   if (!v1) return std::nullopt;
   const float cos_distinct = std::cos(cfg.second_family_min_angle_deg * deg);
   const auto v2 = best_family(segments, cos_par, [&](const Eigen::Vector3f& n) {

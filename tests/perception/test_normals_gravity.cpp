@@ -156,4 +156,27 @@ TEST(PerceptionGravity, TinyTreadsYieldToTheVerticalPlanes) {
   EXPECT_GT(up->dot(true_up(15)), std::cos(0.1 * M_PI / 180));
 }
 
+TEST(PerceptionGravity, ABentTreadIsOutvotedByThePlanesThatAgree) {
+  // A camera at -2.4 deg (level, 0.9 m high) in front of a flight: two treads
+  // of the same size, one of them tilted 3.3 deg as a whole (all of it in a
+  // time-of-flight sensor's multipath band), and the risers. Averaged, the two
+  // treads put up 1.6 deg off; the risers agree with the straight one.
+  auto segs = stair_segments(-2.4, 650, 3000, 0);
+  Segment bent;
+  bent.normal = true_up(-2.4 + 3.3);
+  bent.cells.assign(630, 0);
+  segs.push_back(bent);
+  for (const auto& prior : {std::optional<Eigen::Vector3f>{}, std::optional(true_up(-2.0))}) {
+    const auto up = estimate_up(segs, GravityConfig{}, prior);
+    ASSERT_TRUE(up.has_value());
+    EXPECT_GT(up->dot(true_up(-2.4)), std::cos(0.1 * M_PI / 180));
+  }
+  // With nothing else to agree with, the two treads are averaged (as before).
+  GravityConfig wide;
+  wide.consensus_deg = 5.0f;
+  const auto averaged = estimate_up(segs, wide);
+  ASSERT_TRUE(averaged.has_value());
+  EXPECT_LT(averaged->dot(true_up(-2.4)), std::cos(1.0 * M_PI / 180));
+}
+
 }  // namespace stairs
