@@ -36,31 +36,30 @@ std::optional<Family> best_family(const std::vector<Segment>& segments, float co
 }
 
 // Up as most planes agree on it: horizontal segments parallel to it, vertical
-// ones (risers, walls) perpendicular. Each member of the chosen family is a
-// candidate, scored by the cells of the segments within cfg.consensus_deg of
-// agreeing with it; up is the mean over the best one's parallel agreeing
-// segments. The family's mean alone is pulled by a plane that is bent as a
-// whole (a tread seen only in a time-of-flight sensor's multipath band; thesis
-// 3.5 averages the family).
-Eigen::Vector3f consensus_up(const std::vector<Segment>& segments, const Eigen::Vector3f& family_up, float cos_par,
-                             const GravityConfig& cfg) {
+// ones (risers, walls) perpendicular. Each candidate (the family's mean and
+// the segments `candidate` accepts) is scored by the cells of the segments
+// within cfg.consensus_deg of agreeing with it; up is the mean over the best
+// one's parallel agreeing segments. The family's mean alone is pulled by a
+// plane that is bent as a whole, and a large bent one can be the family (a
+// floor or tread in a time-of-flight sensor's multipath band; thesis 3.5
+// averages the family).
+template <class Candidate>
+Eigen::Vector3f consensus_up(const std::vector<Segment>& segments, const Eigen::Vector3f& family_up,
+                             const GravityConfig& cfg, Candidate candidate) {
   const float sin_agree = std::sin(cfg.consensus_deg * static_cast<float>(M_PI) / 180.0f);
   const float cos_agree = std::sqrt(1.0f - sin_agree * sin_agree);
-  auto agrees = [&](const Segment& s, const Eigen::Vector3f& u) {
-    const float c = std::abs(s.normal.dot(u));
-    return c >= cos_agree || c <= sin_agree;
-  };
-  Eigen::Vector3f best = family_up;
-  float best_score = -1.0f;
   auto score = [&](const Eigen::Vector3f& u) {
     float sc = 0.0f;
-    for (const Segment& s : segments)
-      if (agrees(s, u)) sc += static_cast<float>(s.cells.size());
+    for (const Segment& s : segments) {
+      const float c = std::abs(s.normal.dot(u));
+      if (c >= cos_agree || c <= sin_agree) sc += static_cast<float>(s.cells.size());
+    }
     return sc;
   };
-  best_score = score(family_up);
+  Eigen::Vector3f best = family_up;
+  float best_score = score(family_up);
   for (const Segment& c : segments) {
-    if (c.normal.dot(family_up) < cos_par) continue;
+    if (!candidate(c.normal)) continue;
     const float sc = score(c.normal);
     if (sc > best_score) best_score = sc, best = c.normal;
   }
@@ -84,10 +83,19 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   const Eigen::Vector3f image_up(0, -1, 0);
   // Treads and risers both qualify on a stair; the previous frame's up tells
   // them apart when the risers dominate (a robot looking up a flight).
-  const auto horizontal = best_family(segments, cos_par, [&](const Eigen::Vector3f& n) {
+  auto near_up = [&](const Eigen::Vector3f& n) {
     return n.dot(image_up) >= cos_tilt && (!prior || n.dot(*prior) >= cos_prior);
-  });
-  if (!prior) return horizontal ? std::optional(consensus_up(segments, horizontal->normal, cos_par, cfg)) : std::nullopt;
+  };
+  const auto horizontal = best_family(segments, cos_par, near_up);
+  // Without a prior only the family's members may stand for up (a riser seen
+  // from below is near image up too, and agrees with the treads as well as they
+  // with it); with one, every plane near it may.
+  if (!prior) {
+    if (!horizontal) return std::nullopt;
+    return consensus_up(segments, horizontal->normal, cfg, [&](const Eigen::Vector3f& n) {
+      return near_up(n) && n.dot(horizontal->normal) >= cos_par;
+    });
+  }
   // Vertical planes (risers, walls) fix up too, perpendicular to their
   // normals: used when the treads near the prior are missing or too small to
   // trust beside them (a robot looking up a flight sees thin treads, if any).
@@ -95,7 +103,7 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   auto vertical = [&](const Eigen::Vector3f& n) { return std::abs(n.dot(*prior)) < sin_prior; };
   const auto v1 = best_family(segments, cos_par, vertical);
   if (horizontal && (!v1 || horizontal->support >= cfg.min_support_fraction * v1->support))
-    return consensus_up(segments, horizontal->normal, cos_par, cfg);
+    return consensus_up(segments, horizontal->normal, cfg, near_up);
   if (!v1) return std::nullopt;
   const float cos_distinct = std::cos(cfg.second_family_min_angle_deg * deg);
   const auto v2 = best_family(segments, cos_par, [&](const Eigen::Vector3f& n) {
