@@ -18,6 +18,22 @@ void add_plane(PlaneSet& ps, PlaneKind kind, const PlaneExtent& e) {
   ps.extents.push_back(e);
 }
 
+// Three levels 0.18 m apart, 1 m wide, the lowest from `near_s` to the first
+// riser at `riser_s`, the others 0.25 m deep, and the two risers between them
+// (planes 0-2 the levels, 3-4 the risers).
+PlaneSet three_levels(float near_s, float riser_s, float low_z) {
+  PlaneSet ps;
+  for (int k = 0; k < 3; ++k) {
+    const float z = low_z + 0.18f * k, s0 = k == 0 ? near_s : riser_s + 0.25f * (k - 1), s1 = riser_s + 0.25f * k;
+    add_plane(ps, PlaneKind::Tread, {s0, s1, -0.5f, 0.5f, z, z, 0.5f * (s0 + s1), z});
+  }
+  for (int k = 0; k < 2; ++k) {
+    const float s = riser_s + 0.25f * k, z0 = low_z + 0.18f * k;
+    add_plane(ps, PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.18f, s, z0 + 0.09f});
+  }
+  return ps;
+}
+
 TEST(PerceptionGrammar, DinBoundsWithTolerance) {
   const StairConfig c;
   EXPECT_TRUE(din_riser_ok(0.17, c));
@@ -209,19 +225,10 @@ TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
 TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
   // Looking up a flight: floor, two treads, and at the image's top edge 3 cm
   // of the next riser standing on the last tread (its top out of view).
-  PlaneSet ps;
-  auto add = [&](PlaneKind kind, const PlaneExtent& e) { add_plane(ps, kind, e); };
-  for (int k = 0; k < 3; ++k) {
-    const float z = -1.0f + 0.18f * k, s0 = k == 0 ? 0.3f : 1.0f + 0.25f * (k - 1);
-    add(PlaneKind::Tread, {s0, 1.0f + 0.25f * k, -0.5f, 0.5f, z, z, 0.5f * (s0 + 1.0f + 0.25f * k), z});
-  }
-  for (int k = 0; k < 2; ++k) {
-    const float s = 1.0f + 0.25f * k, z0 = -1.0f + 0.18f * k;
-    add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.18f, s, z0 + 0.09f});
-  }
+  PlaneSet ps = three_levels(0.3f, 1.0f, -1.0f);
   PlaneExtent sliver{1.5f, 1.5f, -0.5f, 0.5f, -0.64f, -0.61f, 1.5f, -0.625f};
   sliver.top_in_view = false;
-  add(PlaneKind::Riser, sliver);
+  add_plane(ps, PlaneKind::Riser, sliver);
   const StairConfig cfg;
   const StairChain chain = best_chain(tread_levels(ps, {}, cfg), cfg);
   ASSERT_EQ(chain.direction, Direction::Up);
@@ -245,19 +252,10 @@ TEST(PerceptionReconstruction, ASliverOfRiserCutByTheBottomOfTheViewMakesTheFirs
   // Looking down a flight from above it: three treads, the risers between
   // them, and under the first tread's front edge 4 cm of its riser before the
   // image's lower border (the tread below is out of view).
-  PlaneSet ps;
-  auto add = [&](PlaneKind kind, const PlaneExtent& e) { add_plane(ps, kind, e); };
-  for (int k = 0; k < 3; ++k) {
-    const float z = -0.6f + 0.18f * k, s0 = 0.4f + 0.25f * k;
-    add(PlaneKind::Tread, {s0, s0 + 0.23f, -0.5f, 0.5f, z, z, s0 + 0.115f, z});
-  }
-  for (int k = 1; k < 3; ++k) {
-    const float s = 0.4f + 0.25f * k, z0 = -0.6f + 0.18f * (k - 1);
-    add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.18f, s, z0 + 0.09f});
-  }
+  PlaneSet ps = three_levels(0.4f, 0.65f, -0.6f);
   PlaneExtent sliver{0.4f, 0.4f, -0.5f, 0.5f, -0.64f, -0.6f, 0.4f, -0.62f};
   sliver.bottom_in_view = false;
-  add(PlaneKind::Riser, sliver);
+  add_plane(ps, PlaneKind::Riser, sliver);
   const StairConfig cfg;
   const StairChain chain = best_chain(tread_levels(ps, {}, cfg), cfg);
   ASSERT_EQ(chain.direction, Direction::Up);
