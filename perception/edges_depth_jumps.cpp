@@ -24,11 +24,12 @@ struct JumpPoint {
 // cell's own normal bends across the edge).
 struct NearSurface {
   Eigen::Vector3f p, n;  // optical frame
-  // Depth along the optical axis where the ray through pixel (u, v) meets it; <= 0 if it does not.
-  float depth_at(const Intrinsics& K, float u, float v) const {
+  // Where the ray through pixel (u, v) meets it (z = depth along the optical
+  // axis); z <= 0 if it does not, at a grazing angle.
+  Eigen::Vector3f point_at(const Intrinsics& K, float u, float v) const {
     const Eigen::Vector3f ray((u - K.cx) / K.fx, (v - K.cy) / K.fy, 1.0f);
     const float den = n.dot(ray);
-    return std::abs(den) > kMinIncidence * ray.norm() ? n.dot(p) / den : -1.0f;
+    return std::abs(den) > kMinIncidence * ray.norm() ? ray * (n.dot(p) / den) : Eigen::Vector3f(0, 0, -1);
   }
 };
 
@@ -52,7 +53,7 @@ float jump_row_px(const DepthImage& f, const NearSurface& near, int u0, int cols
         if (last_near >= 0) sum += static_cast<float>(last_near) - 0.5f, ++n;
         break;
       }
-      const float expected = near.depth_at(f.K, static_cast<float>(u), static_cast<float>(v));
+      const float expected = near.point_at(f.K, static_cast<float>(u), static_cast<float>(v)).z();
       if (std::abs(d - expected) <= cfg.row_tolerance_m + cfg.row_tolerance_per_m2 * expected * expected)
         last_near = v;
     }
@@ -86,10 +87,9 @@ std::vector<JumpPoint> jump_points(const NormalGrid& g, const DepthImage& f, con
         const NearSurface near{p, std::abs(g.normals[c].dot(up)) > level_cos ? up : g.normals[c]};
         const float v = jump_row_px(f, near, gx * g.cell_px, g.cell_px, (gy + 1) * g.cell_px - 1, above * g.cell_px,
                                     zf, cfg);
-        const float depth = std::isfinite(v) ? near.depth_at(f.K, px.x(), v) : -1.0f;
-        if (depth > 0) {
-          const Eigen::Vector3f hit((px.x() - f.K.cx) / f.K.fx * depth, (v - f.K.cy) / f.K.fy * depth, depth);
-          if ((hit - p).norm() < cfg.refine_max_m) at_row = hit;
+        if (std::isfinite(v)) {
+          const Eigen::Vector3f hit = near.point_at(f.K, px.x(), v);
+          if (hit.z() > 0 && (hit - p).norm() < cfg.refine_max_m) at_row = hit;
         }
       }
       out.push_back({R * p, R * at_row, px});
