@@ -532,6 +532,16 @@ stair_model_t to_lcm(const StairModel& model, int64_t utime, int64_t source_utim
   m.status = model.status;
   m.confirmed = model.confirmed;
   m.camera_beneath_known = model.camera_beneath_known;
+  m.base_valid = model.base_valid;
+  for (int i = 0; i < 3; ++i) m.base_position_m[i] = model.base_position_m[i];
+  const Eigen::Quaterniond& b = model.base_orientation;
+  m.base_quaternion_wxyz[0] = b.w();
+  m.base_quaternion_wxyz[1] = b.x();
+  m.base_quaternion_wxyz[2] = b.y();
+  m.base_quaternion_wxyz[3] = b.z();
+  m.base_height_m = static_cast<float>(model.base_height_m);
+  m.base_step_index = static_cast<int16_t>(model.base_step_index);
+  m.base_beneath_known = model.base_beneath_known;
   return m;
 }
 
@@ -574,8 +584,19 @@ bool from_lcm(const stair_model_t& m, StairModel& model, std::string& error) {
     error = "model camera pose with NaN/inf";
     return false;
   }
+  out.base_position_m = {m.base_position_m[0], m.base_position_m[1], m.base_position_m[2]};
+  out.base_orientation = Eigen::Quaterniond(m.base_quaternion_wxyz[0], m.base_quaternion_wxyz[1],
+                                            m.base_quaternion_wxyz[2], m.base_quaternion_wxyz[3]);
+  if (!out.base_position_m.allFinite() || !out.base_orientation.coeffs().allFinite() || !std::isfinite(m.base_height_m)) {
+    error = "model base pose with NaN/inf";
+    return false;
+  }
   out.camera_height_m = m.camera_height_m;
   out.camera_step_index = m.camera_step_index;
+  out.base_valid = m.base_valid;
+  out.base_height_m = m.base_height_m;
+  out.base_step_index = m.base_step_index;
+  out.base_beneath_known = m.base_beneath_known;
   out.observations_fused = m.observations_fused;
   out.registration_rmse_m = m.registration_rmse_m;
   out.registration_inlier_ratio = m.registration_inlier_ratio;

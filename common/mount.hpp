@@ -6,6 +6,9 @@
 
 #include "common/config_json.hpp"
 
+#include <Eigen/Geometry>
+
+#include <cmath>
 #include <string>
 
 namespace stairs {
@@ -30,6 +33,30 @@ inline MountConfig mount_from_json(const nlohmann::json& object, const std::stri
   return read_config<MountConfig>(object, file, "mount",
                                   " (the top-level 'mount' object: height_m, pitch_deg, roll_deg of the camera on "
                                   "its robot; see config/stairs-sim-robot.json)");
+}
+
+// The optical frame (x right, y down, z forward) of a camera in a z-up frame: heading yaw_deg from
+// +x (counter-clockwise seen from above), its optical axis pitch_deg above the horizon, turned
+// roll_deg about that axis (positive = right side down). Rotates optical vectors into the z-up frame.
+inline Eigen::Matrix3d optical_rotation(double yaw_deg, double pitch_deg, double roll_deg) {
+  const double rad = M_PI / 180.0;
+  Eigen::Matrix3d level;  // at zero yaw, pitch and roll: z forward = +x, x right = -y, y down = -z
+  level.col(0) = -Eigen::Vector3d::UnitY();
+  level.col(1) = -Eigen::Vector3d::UnitZ();
+  level.col(2) = Eigen::Vector3d::UnitX();
+  return Eigen::AngleAxisd(yaw_deg * rad, Eigen::Vector3d::UnitZ()).toRotationMatrix() * level *
+         Eigen::AngleAxisd(pitch_deg * rad, Eigen::Vector3d::UnitX()).toRotationMatrix() *
+         Eigen::AngleAxisd(roll_deg * rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+// The camera's optical frame in its carrier's base frame (REP 103: x forward, y left, z up; the
+// origin on the ground straight beneath the camera when the carrier stands level): height_m up
+// the base's z axis, pitched and rolled by the mount. Base pose = camera pose * inverse of this.
+inline Eigen::Isometry3d camera_in_base(const MountConfig& m) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = optical_rotation(0.0, m.pitch_deg, m.roll_deg);
+  T.translation() = Eigen::Vector3d(0.0, 0.0, m.height_m);
+  return T;
 }
 
 }  // namespace stairs

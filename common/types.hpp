@@ -144,6 +144,14 @@ struct StairModel {
   // camera_height_m and camera_step_index hold: the camera is over a part of
   // the stair the model has seen (false beyond its far end).
   bool camera_beneath_known = false;
+  // The carrier's base frame (common/mount.hpp camera_in_base: x forward, y left, z up, origin on the
+  // ground beneath the camera), from the camera and the config's "mount"; valid only with both.
+  bool base_valid = false;
+  Eigen::Vector3d base_position_m = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond base_orientation = Eigen::Quaterniond::Identity();  // base -> stair
+  double base_height_m = 0.0;  // base origin above the surface beneath
+  int base_step_index = -1;    // step beneath the base origin, -1 = floor before the first step
+  bool base_beneath_known = false;  // as camera_beneath_known, for the base origin
   int observations_fused = 0;
   bool confirmed = false;  // enough observations agree on the same steps (flights are empty until then)
   double registration_rmse_m = -1.0;

@@ -23,6 +23,18 @@ TrackedCamera tracked_camera_of(const StairModel& m) {
   return c;
 }
 
+TrackedCamera tracked_base_of(const StairModel& m) {
+  TrackedCamera c;
+  c.valid = m.base_valid;
+  if (m.base_beneath_known) {
+    c.height_m = m.base_height_m;
+    c.step_index = m.base_step_index;
+  }
+  c.position_m = m.base_position_m;
+  c.orientation = m.base_orientation;
+  return c;
+}
+
 RunResult replay(const std::string& input, const ReplayOptions& options, const FrameHook& hook) {
   auto source = open_frame_source(input);
   for (const std::string& w : source->warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -51,6 +63,7 @@ RunResult replay(const std::string& input, const ReplayOptions& options, const F
     f.status = step.observation.status;
     f.tracked_steps = steps_from_camera(*step.model);
     f.tracked_camera = tracked_camera_of(*step.model);
+    if (options.config.tracker.mount.configured()) f.tracked_base = tracked_base_of(*step.model);
     f.latency.push_back({"perception", step.perception_ms});
     f.latency.push_back({"tracker", step.tracker_ms});
     for (const StageLatency& s : step.observation.stages) f.latency.push_back({"perception/" + s.name, s.ms});
@@ -66,7 +79,7 @@ RunResult replay(const std::string& input, const ReplayOptions& options, const F
                              (source->last_error().empty() ? "" : " (" + source->last_error() + ")"));
   r.model = chain.model();
   r.model->planes.clear();  // the report and the JSON hold steps only
-  if (source->ground_truth()) r.score = score_run(r.frames, &r.model->flights, *source->ground_truth());
+  if (source->ground_truth()) r.score = score_run(r.frames, &r.model->flights, *source->ground_truth(), options.config.tracker.mount);
   return r;
 }
 

@@ -24,6 +24,8 @@ using FrameHook = std::function<void(const DepthImage&)>;
 // What a model says about its camera, as the Result JSON's tracked_camera:
 // height and step only where the model knows what is beneath.
 TrackedCamera tracked_camera_of(const StairModel& model);
+// The same for the robot base (stair_model_t base_*), the orientation base -> stair.
+TrackedCamera tracked_base_of(const StairModel& model);
 
 // Throws std::runtime_error naming the file on a bad input or config.
 RunResult replay(const std::string& input, const ReplayOptions& options, const FrameHook& hook = {});

@@ -54,6 +54,11 @@ void print_score(std::ostream& out, const Score& s) {
                num(s.tracked_height_error_cm.mean_abs).c_str(),
                s.tracked_step_index_accuracy ? fmt("%.1f", 100.0 * *s.tracked_step_index_accuracy).c_str() : "n/a",
                num(s.tracked_position_error_cm.mean_abs).c_str());
+  if (s.tracked_base_frames > 0)
+    out << fmt("Tracked robot base (mount) over %d frames: height %s cm, step beneath right %s %%\n",
+               s.tracked_base_frames, num(s.tracked_base_height_error_cm.mean_abs).c_str(),
+               s.tracked_base_step_index_accuracy ? fmt("%.1f", 100.0 * *s.tracked_base_step_index_accuracy).c_str()
+                                                  : "n/a");
 }
 
 void print_model(std::ostream& out, const StairModel& m) {

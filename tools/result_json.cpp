@@ -60,6 +60,7 @@ json frame_to_json(const FrameResult& f) {
           {"latency_ms", latency},
           {"status", f.status}};
   if (f.tracked_camera) out["tracked_camera"] = tracked_camera_to_json(*f.tracked_camera);
+  if (f.tracked_base) out["tracked_base"] = tracked_camera_to_json(*f.tracked_base);
   return out;
 }
 
@@ -107,6 +108,9 @@ json score_to_json(const Score& s) {
       {"tracked_height_error_cm", or_null(s.tracked_height_error_cm.mean_abs)},
       {"tracked_step_index_accuracy", or_null(s.tracked_step_index_accuracy)},
       {"tracked_position_error_cm", or_null(s.tracked_position_error_cm.mean_abs)},
+      {"tracked_base_frames", s.tracked_base_frames},
+      {"tracked_base_height_error_cm", or_null(s.tracked_base_height_error_cm.mean_abs)},
+      {"tracked_base_step_index_accuracy", or_null(s.tracked_base_step_index_accuracy)},
       {"latency_ms", latency}};
 }
 
@@ -136,6 +140,10 @@ json result_to_json(const RunResult& r) {
                         {"true_step_index", fs.true_step_index},
                         {"tracked_step_index", or_null(fs.tracked_step_index)},
                         {"tracked_position_error_cm", or_null(fs.tracked_position_error_cm)}};
+      if (fs.true_base_step_index) {
+        frame["score"]["true_base_step_index"] = *fs.true_base_step_index;
+        frame["score"]["tracked_base_step_index"] = or_null(fs.tracked_base_step_index);
+      }
     }
     frames.push_back(std::move(frame));
   }

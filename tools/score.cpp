@@ -95,11 +95,15 @@ std::optional<int> frame_model_offset(const std::vector<int>& tracked_real) {
 
 }  // namespace
 
-int true_step_beneath(const GroundTruthFrame& frame, const std::vector<Step>& real) {
-  int level = -1;  // the highest step whose nosing is behind the camera
+int true_step_at(double x_m, const std::vector<Step>& real) {
+  int level = -1;  // the highest step whose nosing is behind x
   for (size_t k = 0; k < real.size(); ++k)
-    if (real[k].nosing_m.x() <= frame.position_m.x()) level = static_cast<int>(k);
+    if (real[k].nosing_m.x() <= x_m) level = static_cast<int>(k);
   return level;
+}
+
+int true_step_beneath(const GroundTruthFrame& frame, const std::vector<Step>& real) {
+  return true_step_at(frame.position_m.x(), real);
 }
 
 std::vector<Step> real_steps(const GroundTruth& truth) {
@@ -226,8 +230,8 @@ namespace {
 
 // Running sums of one run's per-frame errors (table 6.1's pose columns, the tracked camera).
 struct RunSums {
-  Accumulator pitch, roll, height, height_visible, tracked_height, tracked_position;
-  int tracked_right_step = 0, frames_since_tracked = 0;
+  Accumulator pitch, roll, height, height_visible, tracked_height, tracked_position, tracked_base_height;
+  int tracked_right_step = 0, frames_since_tracked = 0, tracked_base_right_step = 0;
 };
 
 std::vector<int> matched_real(const std::vector<StepMatch>& ms, size_t detected) {
@@ -294,6 +298,28 @@ void score_tracked_camera(const FrameResult& f, const GroundTruthFrame& gt, cons
   }
 }
 
+// The tracker's robot base against the true camera carried back through the mount: its height
+// over the real surface beneath and its step beneath (through this frame's tracked-step offset).
+void score_tracked_base(const FrameResult& f, const GroundTruthFrame& gt, const std::vector<Step>& real,
+                        const MountConfig& mount, FrameScore& fs, Score& s, RunSums& sums) {
+  if (!mount.configured() || !f.tracked_base || !f.tracked_base->valid) return;
+  Eigen::Isometry3d camera = Eigen::Isometry3d::Identity();
+  camera.linear() = gt.orientation.normalized().toRotationMatrix();
+  camera.translation() = gt.position_m;
+  const Eigen::Vector3d base = (camera * camera_in_base(mount).inverse()).translation();
+  const int level = true_step_at(base.x(), real);
+  const double surface_z = level < 0 ? 0.0 : real[static_cast<size_t>(level)].nosing_m.z();
+  fs.true_base_step_index = level;
+  ++s.tracked_base_frames;
+  const TrackedCamera& tb = *f.tracked_base;
+  if (tb.height_m) sums.tracked_base_height.add(100.0 * (*tb.height_m - (base.z() - surface_z)));
+  if (!tb.step_index) return;
+  ++s.tracked_base_beneath_frames;
+  if (const auto offset = fs.tracked ? frame_model_offset(*fs.tracked) : std::nullopt)
+    fs.tracked_base_step_index = *tb.step_index + *offset;
+  sums.tracked_base_right_step += fs.tracked_base_step_index == level ? 1 : 0;
+}
+
 // Perception's camera pose against the truth.
 void score_pose(const FrameResult& f, const GroundTruthFrame& gt, const std::vector<Step>& real, Score& s,
                 RunSums& sums) {
@@ -341,12 +367,15 @@ void finish_rates(const RunSums& sums, Score& s) {
   s.tracked_position_error_cm = sums.tracked_position.stats();
   if (sums.frames_since_tracked > 0) s.tracked_camera_coverage = double(s.tracked_camera_frames) / sums.frames_since_tracked;
   if (s.tracked_beneath_frames > 0) s.tracked_step_index_accuracy = double(sums.tracked_right_step) / s.tracked_beneath_frames;
+  s.tracked_base_height_error_cm = sums.tracked_base_height.stats();
+  if (s.tracked_base_beneath_frames > 0)
+    s.tracked_base_step_index_accuracy = double(sums.tracked_base_right_step) / s.tracked_base_beneath_frames;
 }
 
 }  // namespace
 
 Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight>* model,
-                const GroundTruth& truth) {
+                const GroundTruth& truth, const MountConfig& mount) {
   Score s;
   const std::vector<Step> real = real_steps(truth);
   RunSums sums;
@@ -362,6 +391,7 @@ Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight
     fs.true_step_index = true_step_beneath(gt, real);
     score_detections(f, gt, real, fs, s);
     score_tracked_camera(f, gt, real, fs, s, sums);
+    score_tracked_base(f, gt, real, mount, fs, s, sums);
     score_pose(f, gt, real, s, sums);
   }
   finish_rates(sums, s);

@@ -2,6 +2,7 @@
 // (the thesis' tables 6.1-6.4). Free functions over common/types.hpp.
 #pragma once
 
+#include "common/mount.hpp"
 #include "common/types.hpp"
 
 #include <map>
@@ -35,6 +36,9 @@ struct FrameResult {
   // ran; empty while the model has no camera.
   std::optional<std::vector<Step>> tracked_steps;
   std::optional<TrackedCamera> tracked_camera;  // absent when no tracker ran
+  // The tracker's robot base (the same fields for the base frame, orientation base -> stair),
+  // present when the tracker ran with a mount (DESIGN.md frames[].tracked_base, this project's).
+  std::optional<TrackedCamera> tracked_base;
   // "perception", "tracker" and perception's own stages as "perception/<name>".
   std::vector<StageLatency> latency;
   std::optional<GroundTruthFrame> truth;
@@ -67,6 +71,8 @@ struct FrameScore {
   // when none of its steps matched.
   std::optional<int> tracked_step_index;
   std::optional<double> tracked_position_error_cm;  // along the stair (x), with that offset
+  // With a mount: the real step beneath the true base, and the tracked base's as a real index.
+  std::optional<int> true_base_step_index, tracked_base_step_index;
 };
 
 struct Score {
@@ -103,6 +109,12 @@ struct Score {
   ErrorStats tracked_height_error_cm;              // above the surface beneath
   std::optional<double> tracked_step_index_accuracy;  // right step beneath / tracked_beneath_frames
   ErrorStats tracked_position_error_cm;            // along the stair (x), where an offset is known
+  // The tracker's robot base against the true one (the true camera carried back through the
+  // mount), over the frames where it is valid, as for the camera.
+  int tracked_base_frames = 0;
+  int tracked_base_beneath_frames = 0;
+  ErrorStats tracked_base_height_error_cm;             // base origin above the surface beneath
+  std::optional<double> tracked_base_step_index_accuracy;  // right step beneath the base / beneath frames
   // Tables 6.2-6.4: the final model (absent when no tracker ran).
   bool model_scored = false;
   int model_steps_real = 0;
@@ -144,6 +156,8 @@ Eigen::Vector3d true_nosing_in_gravity_frame(const Step& real, const GroundTruth
 // The real step beneath the true camera: the highest whose nosing is behind
 // it (-1 = the floor before the first step).
 int true_step_beneath(const GroundTruthFrame& frame, const std::vector<Step>& real);
+// The same beneath a point at x along the stair.
+int true_step_at(double x_m, const std::vector<Step>& real);
 
 // True when part of the level the camera stands over (floor, tread or
 // landing, from the real steps) lies in the image: the lowest image row, seen
@@ -180,8 +194,9 @@ LatencyStats latency_stats(std::vector<double> samples_ms);
 std::map<std::string, LatencyStats> latency_by_stage(const std::vector<FrameResult>& frames);
 
 // Everything above over a run. `model` holds the final model's flights, or is
-// null when no tracker ran.
+// null when no tracker ran; `mount` is the one the tracker was given (its base is
+// scored against the true camera carried back through it; none: not scored).
 Score score_run(const std::vector<FrameResult>& frames, const std::vector<Flight>* model,
-                const GroundTruth& truth);
+                const GroundTruth& truth, const MountConfig& mount = {});
 
 }  // namespace stairs::eval

@@ -36,6 +36,7 @@ TrackerConfig tracker_config_from_json(const nlohmann::json& object, const std::
 TrackerConfig tracker_config_from_sections(const ConfigSections& sections, const std::string& file) {
   TrackerConfig c = tracker_config_from_json(sections.tracker, file);
   c.stair.landing_min_depth_m = stair_definition_from_json(sections.stair, file).landing_min_depth_m;
+  c.mount = mount_from_json(sections.mount, file);
   return c;
 }
 

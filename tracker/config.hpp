@@ -5,6 +5,7 @@
 
 #include "common/config_file.hpp"
 #include "common/limits.hpp"
+#include "common/mount.hpp"
 #include "common/stair_definition.hpp"
 
 #include <nlohmann/json.hpp>
@@ -196,6 +197,7 @@ struct TrackerConfig {
   ModelReconstructionConfig reconstruction;
   DirectionConfig direction;
   LifecycleConfig lifecycle;
+  MountConfig mount;  // not a key here: the config file's top-level "mount", shared with perception
 
   template <class V>
   void visit(V& v) {

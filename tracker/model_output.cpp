@@ -81,38 +81,71 @@ Step model_step(const std::vector<const MapStep*>& steps, size_t i, double first
   return out;
 }
 
-// The camera in the model: its pose, the step beneath (the last whose riser
-// lies behind it) and its height over that step's tread; known only over the
-// part of the stair the model has seen.
+// The step beneath a point of the model at x (the last whose nosing lies behind it) and that
+// step's tread height (the floor's, 0, before the first).
+struct Beneath {
+  int step = -1;
+  double surface_z_m = 0.0;
+};
+
+Beneath beneath(const StairModel& m, double x) {
+  Beneath b;
+  int k = 0;
+  for (const Flight& f : m.flights)
+    for (const Step& s : f.steps) {
+      if (s.nosing_m.x() > x) return b;
+      b = {k++, s.nosing_m.z()};
+    }
+  return b;
+}
+
+// Whether x lies over the part of the stair the model has seen.
+bool over_seen_part(const MapStep& last, const Eigen::Vector3d& origin, double x) {
+  return x <= std::max(last.x(), last.tread_far_x_m) - origin.x();
+}
+
+// The camera in the model: its pose, the step beneath and its height over that step's tread;
+// known only over the part of the stair the model has seen.
 void place_camera(const Pose4& camera, const Eigen::Quaterniond& gravity_rotation, const Eigen::Vector3d& origin,
                   const MapStep& last, StairModel& out) {
   const Eigen::Vector3d cam = camera.t_m - origin;
   out.camera_position_m = cam;
   out.camera_orientation = Eigen::Quaterniond(camera.rotation()) * gravity_rotation;
   out.camera_orientation.normalize();
-  std::vector<const Step*> steps;  // across flights, bottom to top
-  for (const Flight& f : out.flights)
-    for (const Step& s : f.steps) steps.push_back(&s);
-  int k = -1;
-  while (k + 1 < static_cast<int>(steps.size()) && steps[k + 1]->nosing_m.x() <= cam.x()) ++k;
-  const double surface_z = k < 0 ? 0.0 : steps[k]->nosing_m.z();
-  out.camera_step_index = k;
-  out.camera_height_m = cam.z() - surface_z;
-  out.camera_beneath_known = cam.x() <= std::max(last.x(), last.tread_far_x_m) - origin.x();
+  const Beneath b = beneath(out, cam.x());
+  out.camera_step_index = b.step;
+  out.camera_height_m = cam.z() - b.surface_z_m;
+  out.camera_beneath_known = over_seen_part(last, origin, cam.x());
+}
+
+// The carrier's base from the placed camera and the mount (common/mount.hpp camera_in_base).
+void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const MapStep& last, StairModel& out) {
+  out.base_valid = out.camera_valid && mount.configured();
+  if (!out.base_valid) return;
+  Eigen::Isometry3d camera = Eigen::Isometry3d::Identity();
+  camera.linear() = out.camera_orientation.normalized().toRotationMatrix();
+  camera.translation() = out.camera_position_m;
+  const Eigen::Isometry3d base = camera * camera_in_base(mount).inverse();
+  out.base_position_m = base.translation();
+  out.base_orientation = Eigen::Quaterniond(base.linear()).normalized();
+  const Beneath b = beneath(out, out.base_position_m.x());
+  out.base_step_index = b.step;
+  out.base_height_m = out.base_position_m.z() - b.surface_z_m;
+  out.base_beneath_known = over_seen_part(last, origin, out.base_position_m.x());
 }
 
 }  // namespace
 
 void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
                 const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
-                const StairPriorConfig& stair, StairModel& out) {
+                const StairPriorConfig& stair, const MountConfig& mount, StairModel& out) {
   out.flights.clear();
   out.planes.clear();
   const std::vector<const MapStep*> steps = published_steps(map, c, out.confirmed);
   out.camera_valid = camera_valid && !steps.empty();
-  out.camera_step_index = -1;
-  out.camera_height_m = 0.0;
-  out.camera_beneath_known = false;
+  out.camera_step_index = out.base_step_index = -1;
+  out.camera_height_m = out.base_height_m = 0.0;
+  out.camera_beneath_known = out.base_beneath_known = out.base_valid = false;
   if (steps.empty()) return;
 
   const MapStep& first = *steps.front();
@@ -135,6 +168,7 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
   }
   out.flights.push_back(std::move(flight));
   place_camera(camera, gravity_rotation, origin, *steps.back(), out);
+  place_base(mount, origin, *steps.back(), out);
 }
 
 std::vector<Step> steps_from_camera(const StairModel& model) {

@@ -3,6 +3,7 @@
 // landings, with planes and the camera on the stair.
 #pragma once
 
+#include "common/mount.hpp"
 #include "common/types.hpp"
 #include "tracker/pose.hpp"
 #include "tracker/stair_map.hpp"
@@ -12,12 +13,13 @@ namespace stairs {
 struct ConfirmationConfig;
 struct StairPriorConfig;
 
-// Fills out.flights, out.planes and the camera fields; leaves state, counters,
-// direction and quality to the caller. `camera` is the gravity-aligned camera
-// frame -> W pose; `gravity_rotation` is the observation's optical -> gravity.
+// Fills out.flights, out.planes, the camera fields and, with a configured mount, the base fields
+// (issue 15: outputs in the robot's base frame); leaves state, counters, direction and quality to
+// the caller. `camera` is the gravity-aligned camera frame -> W pose; `gravity_rotation` is the
+// observation's optical -> gravity.
 void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
                 const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
-                const StairPriorConfig& stair, StairModel& out);
+                const StairPriorConfig& stair, const MountConfig& mount, StairModel& out);
 
 // The model's steps, bottom to top, in its camera's gravity-aligned frame: what the tracker knows
 // around the camera, out of view included. Empty when the camera is not valid.

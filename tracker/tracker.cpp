@@ -64,7 +64,7 @@ bool Tracker::seed(const Observation& obs) {
   pose.yaw_rad = *yaw;
   merge(map_, observed_steps(obs, pose), pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
   if (map_.empty()) return false;
-  accepted_.emplace_back(obs.source_utime, pose);
+  accepted_.push_back({obs.source_utime, pose, to_base_m(obs)});
   model_.observations_fused = 1;
   model_.state = TrackingState::Ok;
   model_.registration_rmse_m = -1.0;
@@ -74,22 +74,34 @@ bool Tracker::seed(const Observation& obs) {
 }
 
 bool Tracker::odometry_covers(int64_t utime) const {
-  return !accepted_.empty() && odometry_.covers(accepted_.back().first, utime);
+  return !accepted_.empty() && odometry_.covers(accepted_.back().utime, utime);
 }
 
-Pose4 Tracker::predict(int64_t utime) const {
-  const auto& [t1, p1] = accepted_.back();
-  if (const auto p = odometry_.predict(p1, t1, utime)) return *p;
-  const auto& [t0, p0] = accepted_.front();
-  const double dt = seconds(utime - t1);
-  if (t1 == t0 || dt > config_.motion.max_prediction_s) return p1;
-  const double span = seconds(t1 - t0);
+Eigen::Vector3d Tracker::to_base_m(const Observation& obs) const {
+  if (!config_.mount.configured() || !obs.camera.valid) return Eigen::Vector3d::Zero();
+  return obs.camera.gravity_rotation.normalized() * camera_in_base(config_.mount).inverse().translation();
+}
+
+// Constant velocity of the point that moves smoothly: with a mount the robot's base (its body pitches
+// over a flight's ends and swings the camera forward or back by up to the mount's height), else the
+// camera. `to_base_m` is this frame's camera -> base offset (the attitude perception measured).
+Pose4 Tracker::predict(int64_t utime, const Eigen::Vector3d& to_base_m) const {
+  const Accepted& a1 = accepted_.back();
+  const Pose4& p1 = a1.pose;
+  if (const auto p = odometry_.predict(p1, a1.utime, utime)) return *p;
+  const Accepted& a0 = accepted_.front();
+  const double dt = seconds(utime - a1.utime);
+  if (a1.utime == a0.utime || dt > config_.motion.max_prediction_s) return p1;
+  const double span = seconds(a1.utime - a0.utime);
+  const Eigen::Vector3d b1 = p1.t_m + p1.rotation() * a1.to_base_m;
+  const Eigen::Vector3d b0 = a0.pose.t_m + a0.pose.rotation() * a0.to_base_m;
   Pose4 p = p1;
-  p.t_m += (p1.t_m - p0.t_m) * (dt / span);
-  // Height follows the stair's mean slope under the camera, not the last
-  // vertical speed: a gap across a flight's end would carry its slope on.
-  p.t_m.z() = p1.t_m.z() + mean_surface_z_m(map_, p.t_m.x(), config_.stair) - mean_surface_z_m(map_, p1.t_m.x(), config_.stair);
-  p.yaw_rad = wrap_angle(p1.yaw_rad + wrap_angle(p1.yaw_rad - p0.yaw_rad) * (dt / span));
+  p.yaw_rad = wrap_angle(p1.yaw_rad + wrap_angle(p1.yaw_rad - a0.pose.yaw_rad) * (dt / span));
+  Eigen::Vector3d b = b1 + (b1 - b0) * (dt / span);
+  // Height follows the stair's mean slope, not the last vertical speed: a gap
+  // across a flight's end would carry its slope on.
+  b.z() = b1.z() + mean_surface_z_m(map_, b.x(), config_.stair) - mean_surface_z_m(map_, b1.x(), config_.stair);
+  p.t_m = b - p.rotation() * to_base_m;
   return p;
 }
 
@@ -136,7 +148,7 @@ std::string Tracker::restart_if_time_went_back(int64_t utime) {
 // prior still places it.
 void Tracker::drop_if_lost_long(const Observation& obs, bool with_odometry) {
   if (map_.empty() || obs.steps.empty() || with_odometry ||
-      seconds(obs.source_utime - accepted_.back().first) <= config_.lifecycle.reset_after_s)
+      seconds(obs.source_utime - accepted_.back().utime) <= config_.lifecycle.reset_after_s)
     return;
   reset();
   model_.direction = direction_.update(obs.direction);
@@ -166,8 +178,8 @@ void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool wi
 }
 
 void Tracker::track(const Observation& obs, bool with_odometry) {
-  const double since_accept_s = seconds(obs.source_utime - accepted_.back().first);
-  const Pose4 prior = predict(obs.source_utime);
+  const double since_accept_s = seconds(obs.source_utime - accepted_.back().utime);
+  const Pose4 prior = predict(obs.source_utime, to_base_m(obs));
   if (!obs.camera.valid || obs.steps.empty()) return place_by_prior(obs, prior, with_odometry, since_accept_s, "observation without steps");
 
   Pose4 start_pose = prior;
@@ -225,15 +237,16 @@ void Tracker::accept(const Observation& obs, const Pose4& pose) {
   merge(map_, observed_steps(obs, pose), pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
   reconstruct_occluded_steps(map_, config_.reconstruction, config_.stair, config_.confirmation.min_confirmations,
                              config_.merge.max_model_steps);
-  accepted_.emplace_back(obs.source_utime, pose);
+  accepted_.push_back({obs.source_utime, pose, to_base_m(obs)});
   odometry_.forget_before(obs.source_utime);
-  while (accepted_.size() > 2 && seconds(obs.source_utime - accepted_[1].first) >= config_.motion.velocity_window_s)
+  while (accepted_.size() > 2 && seconds(obs.source_utime - accepted_[1].utime) >= config_.motion.velocity_window_s)
     accepted_.pop_front();
   ++model_.observations_fused;
 }
 
 void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid) {
-  fill_model(map_, pose, camera_valid, obs.camera.gravity_rotation, config_.confirmation, config_.stair, model_);
+  fill_model(map_, pose, camera_valid, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
+             model_);
 }
 
 }  // namespace stairs

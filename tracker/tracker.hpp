@@ -46,7 +46,8 @@ class Tracker {
   bool reseed(const Observation& obs, const std::string& why);
   void accept(const Observation& obs, const Pose4& pose);
   Pose4 with_observed_height(const Observation& obs, Pose4 pose) const;
-  Pose4 predict(int64_t utime) const;
+  Pose4 predict(int64_t utime, const Eigen::Vector3d& to_base_m) const;
+  Eigen::Vector3d to_base_m(const Observation& obs) const;
   bool odometry_covers(int64_t utime) const;
   void publish(const Observation& obs, const Pose4& pose, bool camera_valid);
 
@@ -55,7 +56,14 @@ class Tracker {
   DirectionFilter direction_;
   StairModel model_;
   OdometryPrior odometry_;
-  std::deque<std::pair<int64_t, Pose4>> accepted_;  // recent accepted poses (utime, pose), for the velocity
+  // A recent accepted pose, for the velocity; to_base_m: camera centre -> the carrier's base origin in
+  // the gravity-aligned camera frame at that pose (zero without a mount).
+  struct Accepted {
+    int64_t utime;
+    Pose4 pose;
+    Eigen::Vector3d to_base_m;
+  };
+  std::deque<Accepted> accepted_;
   int64_t last_utime_ = 0;
   bool have_utime_ = false;
   int64_t dropped_out_of_order_ = 0, rejected_registrations_ = 0, resets_ = 0, time_jumps_ = 0;

@@ -38,17 +38,29 @@ Extent extent(const Scene& s) {
 }  // namespace
 
 Eigen::Isometry3d camera_pose(const Eigen::Vector3d& position_m, double yaw_deg, double pitch_deg, double roll_deg) {
-  // Optical axes at zero yaw, pitch and roll: z forward = +x, x right = -y, y down = -z.
-  Eigen::Matrix3d level;
-  level.col(0) = -Eigen::Vector3d::UnitY();
-  level.col(1) = -Eigen::Vector3d::UnitZ();
-  level.col(2) = Eigen::Vector3d::UnitX();
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::AngleAxisd(yaw_deg * kRad, Eigen::Vector3d::UnitZ()).toRotationMatrix() * level *
-               Eigen::AngleAxisd(pitch_deg * kRad, Eigen::Vector3d::UnitX()).toRotationMatrix() *
-               Eigen::AngleAxisd(roll_deg * kRad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.linear() = optical_rotation(yaw_deg, pitch_deg, roll_deg);
   T.translation() = position_m;
   return T;
+}
+
+Eigen::Isometry3d base_pose(const Eigen::Vector3d& position_m, double yaw_deg, double pitch_deg, double roll_deg) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  // Nose up is a negative turn about the base's y (left) axis.
+  T.linear() = (Eigen::AngleAxisd(yaw_deg * kRad, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(-pitch_deg * kRad, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(roll_deg * kRad, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  T.translation() = position_m;
+  return T;
+}
+
+MountConfig TrajectoryConfig::mount() const {
+  MountConfig m;
+  if (carrier != Carrier::Robot) return m;
+  m.height_m = static_cast<float>(height_m);
+  m.pitch_deg = static_cast<float>(pitch_deg);
+  return m;
 }
 
 TrajectoryConfig trajectory_defaults(Carrier carrier) {
@@ -168,12 +180,14 @@ Eigen::Isometry3d Trajectory::pose_at(double t) const {
     roll += wave(2.0 * w, 0.9, 1.1, t);
     yaw += wave(1.5 * w, 0.35, 2.0, t);
   } else {
-    // The body pitches with the slope under it along the heading.
+    // A rigid body: the base stands on the smoothed surface and pitches with its slope along the
+    // heading; the camera sits on it at the mount's height and pitch, so on a slope it is carried
+    // back and up the body's tilted axis, not straight up (issue 15: outputs in the base frame).
     const double heading = std::cos(yaw * kRad) >= 0 ? 1.0 : -1.0;
     const double slope = (smoothed_surface_m(x + 0.05 * heading, y) - smoothed_surface_m(x - 0.05 * heading, y)) / 0.1;
-    pitch += std::atan(slope) / kRad;
-    pitch += wave(0.3 * w, 3.0, 0.0, t);
-    roll += wave(0.3 * w, 2.3, 0.7, t);
+    const double body_pitch = std::atan(slope) / kRad + wave(0.3 * w, 3.0, 0.0, t);
+    const double body_roll = wave(0.3 * w, 2.3, 0.7, t);
+    return base_pose({x, y, smoothed_surface_m(x, y)}, yaw, body_pitch, body_roll) * camera_in_base(c.mount());
   }
   return camera_pose({x, y, z}, yaw, pitch, roll);
 }

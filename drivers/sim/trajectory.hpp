@@ -5,6 +5,7 @@
 // landing, and back the same way (issue 15: turning around on a landing).
 #pragma once
 
+#include "common/mount.hpp"
 #include "drivers/sim/scene.hpp"
 
 #include <Eigen/Geometry>
@@ -20,6 +21,10 @@ namespace stairs::sim {
 // side down).
 Eigen::Isometry3d camera_pose(const Eigen::Vector3d& position_m, double yaw_deg, double pitch_deg, double roll_deg);
 
+// A robot's base frame (REP 103: x forward, y left, z up) at `position_m`, heading yaw_deg from +x,
+// nose pitch_deg up, rolled roll_deg about its x axis (positive = right side down).
+Eigen::Isometry3d base_pose(const Eigen::Vector3d& position_m, double yaw_deg, double pitch_deg, double roll_deg);
+
 enum class Carrier { HandHeld, Robot };
 enum class Situation { Approach, FirstStep, Flight, Landing, Full, RoundTrip };
 
@@ -29,17 +34,22 @@ struct TrajectoryConfig {
   bool descending = false;
   double speed_mps = 0.6;   // horizontal speed along the path
   double fps = 30.0;        // frames per second
-  double height_m = 1.0;    // camera above the (smoothed) surface beneath
+  double height_m = 1.0;    // hand-held: camera above the (smoothed) surface beneath; robot: up the base's z axis
   double pitch_deg = -35.0; // hand-held: below the horizon; robot: mount pitch relative to the body
   double lateral_m = 0.0;   // offset from the flight's centre line, + = left
   double yaw_deg = 0.0;     // heading offset from straight up (or down) the stair
   double wobble = 1.0;      // scale of the gait wobble / robot vibration, 0 = steady
   double approach_m = 3.0;  // distance to the first edge where Approach and Full begin
   double turn_s = 4.0;      // round trip: seconds for the half turn on the spot (45 deg/s)
+
+  // The robot's mount (height_m, pitch_deg on the base), as the config file's "mount" object
+  // gives it to perception and the tracker; none for a hand-held camera.
+  MountConfig mount() const;
 };
 
-// Defaults of a carrier: hand-held 1.0 m high, pitch -35 deg; robot 0.45 m
-// high, camera pitched -20 deg on a body that pitches with the slope.
+// Defaults of a carrier: hand-held 1.0 m high, pitch -35 deg; robot: camera 0.45 m up the
+// base's z axis, pitched -20 deg on a rigid body whose base stands on the smoothed surface and
+// pitches with its slope.
 TrajectoryConfig trajectory_defaults(Carrier carrier);
 
 Situation situation_from_name(const std::string& name);  // approach, first_step, flight, landing, full, round_trip

@@ -139,6 +139,12 @@ TEST(Messages, ModelRoundTrip) {
   model.camera_step_index = 3;
   model.observations_fused = 57;
   model.registration_rmse_m = 0.004;
+  model.base_valid = true;
+  model.base_position_m = {-0.9, 0.1, 0.02};
+  model.base_orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()));
+  model.base_height_m = 0.02;
+  model.base_step_index = 2;
+  model.base_beneath_known = true;
   model.planes = {sample_plane(PlaneKind::Landing, 3)};
   const stair_model_t m = round_trip(to_lcm(model, 5, 4, 3));
   StairModel back;
@@ -153,6 +159,11 @@ TEST(Messages, ModelRoundTrip) {
   EXPECT_EQ(back.camera_step_index, 3);
   EXPECT_EQ(back.observations_fused, 57);
   EXPECT_NEAR(back.camera_position_m.z(), 1.2, 1e-12);
+  EXPECT_TRUE(back.base_valid && back.base_beneath_known);
+  EXPECT_EQ(back.base_step_index, 2);
+  EXPECT_NEAR(back.base_height_m, 0.02, 1e-6);
+  EXPECT_NEAR(back.base_position_m.x(), -0.9, 1e-12);
+  EXPECT_NEAR(back.base_orientation.angularDistance(model.base_orientation), 0.0, 1e-9);
   ASSERT_EQ(back.planes.size(), 1u);
   EXPECT_EQ(back.planes[0].kind, PlaneKind::Landing);
 }

@@ -176,4 +176,26 @@ TEST(EvalLogs, MountedCameraHeight) {
                                             << " cm over " << s["height_frames"] << " frames with a height";
 }
 
+// Issue 15, outputs in the robot's base frame: with the robot's mount configured the tracker gives
+// its base (the camera carried back through the mount) as well as the camera, each within 2 cm above
+// the surface beneath and on the right step in >= 98 % of the frames where it is valid. The base is
+// scored against stairs-sim's rigid robot (drivers/sim/trajectory.hpp).
+TEST(EvalLogs, MountedTrackedBaseAndCamera) {
+  ASSERT_NE(std::getenv("STAIRS_EVAL_CONFIG"), nullptr) << "STAIRS_EVAL_CONFIG not set (CMakeLists.txt)";
+  const json s = score_of_log_under_test();
+  ASSERT_TRUE(s.is_object());
+  const std::string log = log_under_test() + ": ";
+  EXPECT_GT(num(s["tracked_camera_frames"]), 0) << log << "FLOOR(tracker) no frame with a tracked camera";
+  EXPECT_LE(num(s["tracked_height_error_cm"]), 2.0)
+      << log << "FLOOR(tracker) camera height error " << s["tracked_height_error_cm"] << " cm";
+  EXPECT_GE(num(s["tracked_step_index_accuracy"]), 0.98)
+      << log << "FLOOR(tracker) step beneath the camera right in " << s["tracked_step_index_accuracy"];
+  EXPECT_EQ(num(s["tracked_base_frames"]), num(s["tracked_camera_frames"]))
+      << log << "FLOOR(tracker) a base on every frame with a camera: " << s["tracked_base_frames"];
+  EXPECT_LE(num(s["tracked_base_height_error_cm"]), 2.0)
+      << log << "FLOOR(tracker) base height error " << s["tracked_base_height_error_cm"] << " cm";
+  EXPECT_GE(num(s["tracked_base_step_index_accuracy"]), 0.98)
+      << log << "FLOOR(tracker) step beneath the base right in " << s["tracked_base_step_index_accuracy"];
+}
+
 }  // namespace

@@ -152,3 +152,38 @@ TEST(SimTruth, RoundTripTurnsOnTheTopLandingAndComesBack) {
     EXPECT_NEAR(T.translation().z(), top_z + c.height_m, 1e-6);
   }
 }
+
+// Issue 15, outputs in the robot's base frame: the robot carrier is a rigid body. Its base (the
+// camera carried back through the mount) stands on the floor level before the stair and between
+// the levels of the stair under it on the flight, its z axis tilted by the body's pitch alone.
+TEST(SimTruth, ARobotCarriesItsCameraOnARigidMount) {
+  const Scene s = make_preset("straight_up");
+  TrajectoryConfig c = trajectory_defaults(Carrier::Robot);
+  c.wobble = 0;
+  const Trajectory traj(s, c);
+  const MountConfig mount = c.mount();
+  ASSERT_TRUE(mount.configured());
+  const double rise = step_geometry(s).front().top_z_m;
+  const std::vector<StepGeometry> steps = step_geometry(s);
+  std::vector<double> flight_tilt_deg;  // with the whole track (+-0.35 m) on the flight
+  for (int f = 0; f < traj.frames(); ++f) {
+    const Eigen::Isometry3d base = traj.pose(f) * camera_in_base(mount).inverse();
+    const Eigen::Vector3d p = base.translation(), z = base.linear().col(2), y = base.linear().col(1);
+    EXPECT_NEAR(y.z(), 0.0, 1e-9) << "frame " << f << ": no roll without wobble";
+    const double surface = surface_height_m(s, p.x(), p.y());
+    EXPECT_GE(p.z(), surface - rise - 1e-9) << "frame " << f;
+    EXPECT_LE(p.z(), surface + rise + 1e-9) << "frame " << f;
+    if (p.x() > steps.front().riser_x_m + 0.35 && p.x() < steps.back().riser_x_m - 0.35)
+      flight_tilt_deg.push_back(std::acos(z.z()) * 180.0 / M_PI);
+  }
+  // On the floor before the stair: level, on the floor, the camera straight above at the mount's height.
+  const Eigen::Isometry3d cam0 = traj.pose(0), base0 = cam0 * camera_in_base(mount).inverse();
+  EXPECT_NEAR(base0.translation().z(), 0.0, 1e-9);
+  EXPECT_NEAR(base0.linear().col(2).z(), 1.0, 1e-9);
+  EXPECT_NEAR(cam0.translation().z(), c.height_m, 1e-6);  // the mount holds floats
+  // On the flight the body tilts with the stair's slope (atan(0.18 / 0.25) = 35.8 deg).
+  ASSERT_GT(flight_tilt_deg.size(), 10u);
+  std::nth_element(flight_tilt_deg.begin(), flight_tilt_deg.begin() + flight_tilt_deg.size() / 2, flight_tilt_deg.end());
+  EXPECT_NEAR(flight_tilt_deg[flight_tilt_deg.size() / 2], std::atan(0.18 / 0.25) * 180.0 / M_PI, 0.5);
+}
+
