@@ -21,6 +21,17 @@ bool finite_all(const float* v, int n) {
   return true;
 }
 
+// A pose as the messages carry it: position (x, y, z) and quaternion (w, x, y, z).
+void put_pose(const Eigen::Vector3d& p, const Eigen::Quaterniond& q, double* position, double* wxyz) {
+  for (int i = 0; i < 3; ++i) position[i] = p[i];
+  wxyz[0] = q.w();
+  wxyz[1] = q.x();
+  wxyz[2] = q.y();
+  wxyz[3] = q.z();
+}
+Eigen::Vector3d position_of(const double* p) { return {p[0], p[1], p[2]}; }
+Eigen::Quaterniond quaternion_of(const double* wxyz) { return {wxyz[0], wxyz[1], wxyz[2], wxyz[3]}; }
+
 int32_t read_be32(const uint8_t* p) {
   return static_cast<int32_t>((uint32_t(p[0]) << 24) | (uint32_t(p[1]) << 16) | (uint32_t(p[2]) << 8) |
                               uint32_t(p[3]));
@@ -108,12 +119,7 @@ STAIRS_INSTANTIATE(tracker_command_t)
 pose_t to_lcm(const OdometrySample& o) {
   pose_t m{};
   m.utime = o.utime;
-  for (int i = 0; i < 3; ++i) m.pos[i] = o.position_m[i];
-  const Eigen::Quaterniond& q = o.orientation;
-  m.orientation[0] = q.w();
-  m.orientation[1] = q.x();
-  m.orientation[2] = q.y();
-  m.orientation[3] = q.z();
+  put_pose(o.position_m, o.orientation, m.pos, m.orientation);
   return m;
 }
 
@@ -122,11 +128,11 @@ bool from_lcm(const pose_t& m, OdometrySample& o, std::string& error) {
   for (double v : m.pos) finite = finite && std::isfinite(v);
   for (double v : m.orientation) finite = finite && std::isfinite(v);
   if (!finite) return error = "odometry pose with NaN/inf", false;
-  const Eigen::Quaterniond q(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]);
+  const Eigen::Quaterniond q = quaternion_of(m.orientation);
   if (std::abs(q.norm() - 1.0) > 1e-3)
     return error = "odometry orientation is no unit quaternion (norm " + std::to_string(q.norm()) + ")", false;
   o.utime = m.utime;
-  o.position_m = Eigen::Vector3d(m.pos[0], m.pos[1], m.pos[2]);
+  o.position_m = position_of(m.pos);
   o.orientation = q.normalized();
   return true;
 }
@@ -510,12 +516,7 @@ stair_model_t to_lcm(const StairModel& model, int64_t utime, int64_t source_utim
   m.num_flights = count16(model.flights, stair_model_t::MAX_FLIGHTS);
   for (int i = 0; i < m.num_flights; ++i) m.flights.push_back(to_lcm(model.flights[i]));
   m.camera_valid = model.camera_valid;
-  for (int i = 0; i < 3; ++i) m.camera_position_m[i] = model.camera_position_m[i];
-  const Eigen::Quaterniond& q = model.camera_orientation;
-  m.camera_quaternion_wxyz[0] = q.w();
-  m.camera_quaternion_wxyz[1] = q.x();
-  m.camera_quaternion_wxyz[2] = q.y();
-  m.camera_quaternion_wxyz[3] = q.z();
+  put_pose(model.camera_position_m, model.camera_orientation, m.camera_position_m, m.camera_quaternion_wxyz);
   m.camera_height_m = static_cast<float>(model.camera_height_m);
   m.camera_step_index = static_cast<int16_t>(model.camera_step_index);
   m.observations_fused = model.observations_fused;
@@ -533,12 +534,7 @@ stair_model_t to_lcm(const StairModel& model, int64_t utime, int64_t source_utim
   m.confirmed = model.confirmed;
   m.camera_beneath_known = model.camera_beneath_known;
   m.base_valid = model.base_valid;
-  for (int i = 0; i < 3; ++i) m.base_position_m[i] = model.base_position_m[i];
-  const Eigen::Quaterniond& b = model.base_orientation;
-  m.base_quaternion_wxyz[0] = b.w();
-  m.base_quaternion_wxyz[1] = b.x();
-  m.base_quaternion_wxyz[2] = b.y();
-  m.base_quaternion_wxyz[3] = b.z();
+  put_pose(model.base_position_m, model.base_orientation, m.base_position_m, m.base_quaternion_wxyz);
   m.base_height_m = static_cast<float>(model.base_height_m);
   m.base_step_index = static_cast<int16_t>(model.base_step_index);
   m.base_beneath_known = model.base_beneath_known;
@@ -576,17 +572,15 @@ bool from_lcm(const stair_model_t& m, StairModel& model, std::string& error) {
     out.planes.push_back(from_lcm(p));
   }
   out.camera_valid = m.camera_valid;
-  out.camera_position_m = {m.camera_position_m[0], m.camera_position_m[1], m.camera_position_m[2]};
-  out.camera_orientation = Eigen::Quaterniond(m.camera_quaternion_wxyz[0], m.camera_quaternion_wxyz[1],
-                                              m.camera_quaternion_wxyz[2], m.camera_quaternion_wxyz[3]);
+  out.camera_position_m = position_of(m.camera_position_m);
+  out.camera_orientation = quaternion_of(m.camera_quaternion_wxyz);
   if (!out.camera_position_m.allFinite() || !out.camera_orientation.coeffs().allFinite() ||
       !std::isfinite(m.camera_height_m)) {
     error = "model camera pose with NaN/inf";
     return false;
   }
-  out.base_position_m = {m.base_position_m[0], m.base_position_m[1], m.base_position_m[2]};
-  out.base_orientation = Eigen::Quaterniond(m.base_quaternion_wxyz[0], m.base_quaternion_wxyz[1],
-                                            m.base_quaternion_wxyz[2], m.base_quaternion_wxyz[3]);
+  out.base_position_m = position_of(m.base_position_m);
+  out.base_orientation = quaternion_of(m.base_quaternion_wxyz);
   if (!out.base_position_m.allFinite() || !out.base_orientation.coeffs().allFinite() || !std::isfinite(m.base_height_m)) {
     error = "model base pose with NaN/inf";
     return false;
@@ -622,11 +616,7 @@ ground_truth_t to_lcm(const GroundTruth& gt, const GroundTruthFrame& fr, int64_t
   m.height_m = static_cast<float>(fr.height_m);
   m.distance_valid = fr.distance_m.has_value();
   m.distance_m = static_cast<float>(fr.distance_m.value_or(0.0));
-  for (int i = 0; i < 3; ++i) m.position_m[i] = fr.position_m[i];
-  m.quaternion_wxyz[0] = fr.orientation.w();
-  m.quaternion_wxyz[1] = fr.orientation.x();
-  m.quaternion_wxyz[2] = fr.orientation.y();
-  m.quaternion_wxyz[3] = fr.orientation.z();
+  put_pose(fr.position_m, fr.orientation, m.position_m, m.quaternion_wxyz);
   m.num_visible = count16(fr.visible_steps, ground_truth_t::MAX_VISIBLE);
   for (int i = 0; i < m.num_visible; ++i) m.visible_steps.push_back(static_cast<int16_t>(fr.visible_steps[i]));
   return m;
@@ -651,9 +641,8 @@ bool from_lcm(const ground_truth_t& m, GroundTruth& gt, GroundTruthFrame& fr, st
   fr.roll_deg = m.roll_deg;
   fr.height_m = m.height_m;
   if (m.distance_valid) fr.distance_m = m.distance_m;
-  fr.position_m = {m.position_m[0], m.position_m[1], m.position_m[2]};
-  fr.orientation = Eigen::Quaterniond(m.quaternion_wxyz[0], m.quaternion_wxyz[1], m.quaternion_wxyz[2],
-                                      m.quaternion_wxyz[3]);
+  fr.position_m = position_of(m.position_m);
+  fr.orientation = quaternion_of(m.quaternion_wxyz);
   fr.visible_steps.assign(m.visible_steps.begin(), m.visible_steps.end());
   return true;
 }

@@ -11,28 +11,33 @@
 
 namespace stairs::eval {
 
-TrackedCamera tracked_camera_of(const StairModel& m) {
+namespace {
+
+// A pose of the model as the Result JSON gives it: height and step only where the model knows
+// what is beneath.
+TrackedCamera tracked(bool valid, bool beneath_known, double height_m, int step_index, const Eigen::Vector3d& position_m,
+                      const Eigen::Quaterniond& orientation) {
   TrackedCamera c;
-  c.valid = m.camera_valid;
-  if (m.camera_beneath_known) {
-    c.height_m = m.camera_height_m;
-    c.step_index = m.camera_step_index;
+  c.valid = valid;
+  if (beneath_known) {
+    c.height_m = height_m;
+    c.step_index = step_index;
   }
-  c.position_m = m.camera_position_m;
-  c.orientation = m.camera_orientation;
+  c.position_m = position_m;
+  c.orientation = orientation;
   return c;
 }
 
+}  // namespace
+
+TrackedCamera tracked_camera_of(const StairModel& m) {
+  return tracked(m.camera_valid, m.camera_beneath_known, m.camera_height_m, m.camera_step_index, m.camera_position_m,
+                 m.camera_orientation);
+}
+
 TrackedCamera tracked_base_of(const StairModel& m) {
-  TrackedCamera c;
-  c.valid = m.base_valid;
-  if (m.base_beneath_known) {
-    c.height_m = m.base_height_m;
-    c.step_index = m.base_step_index;
-  }
-  c.position_m = m.base_position_m;
-  c.orientation = m.base_orientation;
-  return c;
+  return tracked(m.base_valid, m.base_beneath_known, m.base_height_m, m.base_step_index, m.base_position_m,
+                 m.base_orientation);
 }
 
 RunResult replay(const std::string& input, const ReplayOptions& options, const FrameHook& hook) {
