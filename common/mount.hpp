@@ -1,7 +1,8 @@
 // Where the camera sits on its carrier: the config file's top-level "mount"
 // object. A property of the robot, not of one stage: perception's camera
-// height reads it (issue 15, "the mount"); absent (height 0) for a hand-held
-// camera.
+// height reads it, and the tracker, which gives the robot's base and predicts
+// the base's motion (issue 15, "the mount"); stairs-sim's robot is built with
+// it. Absent (height 0) for a hand-held camera.
 #pragma once
 
 #include "common/config_json.hpp"

@@ -1,6 +1,7 @@
 // stairs-tracker as a real subprocess over UDP multicast on loopback:
 // observations in, one model out per observation, a garbage message counted
-// as invalid, the daemon survives it and stops cleanly on SIGTERM.
+// as invalid, the daemon survives it and stops cleanly on SIGTERM; given a
+// config with a mount, its models carry the robot's base.
 #include "tests/support/multicast.hpp"
 #include "common/lcm_bridge.hpp"
 #include "drivers/sim/synthetic_observations.hpp"
@@ -12,8 +13,10 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 using namespace stairs;
 
@@ -22,7 +25,8 @@ namespace {
 const std::string kUrl = "udpm://239.255.76.67:7689?ttl=0&recv_buf_size=4194304";
 
 struct Received {
-  int models = 0, bad_models = 0, max_fused = 0, steps = 0;
+  int models = 0, bad_models = 0, max_fused = 0, steps = 0, camera_valid = 0, base_valid = 0;
+  double min_base_offset_m = 1e9, max_base_offset_m = 0.0;  // |camera - base| on the models with a base
   int64_t invalid = 0, dropped = 0;
   void on_model(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     stair_model_t msg;
@@ -34,6 +38,13 @@ struct Received {
     }
     ++models;
     max_fused = std::max(max_fused, m.observations_fused);
+    camera_valid += m.camera_valid;
+    if (m.base_valid) {
+      ++base_valid;
+      const double d = (m.camera_position_m - m.base_position_m).norm();
+      min_base_offset_m = std::min(min_base_offset_m, d);
+      max_base_offset_m = std::max(max_base_offset_m, d);
+    }
     steps = 0;
     for (const auto& f : m.flights) steps += static_cast<int>(f.steps.size());
   }
@@ -52,22 +63,27 @@ void pump(lcm::LCM& lcm, int ms) {
   while (std::chrono::steady_clock::now() < end) lcm.handleTimeout(20);
 }
 
-}  // namespace
-
-TEST(TrackerDaemon, ObservationsInModelsOutGarbageCounted) {
-  if (!stairs::test::ensure_multicast_loopback(kUrl)) GTEST_SKIP() << stairs::test::kMulticastSkipReason;
+// Runs the daemon with `extra` options on a synthetic ascent of `n` observations (a garbage message
+// after the 21st) and returns what it published; the daemon must survive and stop cleanly.
+Received run_tracker(const std::vector<std::string>& extra, int n) {
+  Received rx;
   const std::string exe = std::string(STAIRS_BINARY_DIR) + "/bin/stairs-tracker";
+  std::vector<std::string> args = {exe, "--lcm-url", kUrl, "--observation-channel", "TRK_TEST_OBS",
+                                   "--model-channel", "TRK_TEST_MODEL", "--status-channel", "TRK_TEST_STATUS",
+                                   "--reset-after-s", "3"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
   const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
+  EXPECT_GE(pid, 0);
+  if (pid < 0) return rx;
   if (pid == 0) {
-    execl(exe.c_str(), exe.c_str(), "--lcm-url", kUrl.c_str(), "--observation-channel", "TRK_TEST_OBS",
-          "--model-channel", "TRK_TEST_MODEL", "--status-channel", "TRK_TEST_STATUS", "--reset-after-s", "3",
-          static_cast<char*>(nullptr));
+    execv(exe.c_str(), argv.data());
     _exit(127);
   }
   lcm::LCM lcm(kUrl);
-  ASSERT_TRUE(lcm.good());
-  Received rx;
+  EXPECT_TRUE(lcm.good());
   lcm.subscribe("TRK_TEST_MODEL", &Received::on_model, &rx);
   lcm.subscribe("TRK_TEST_STATUS", &Received::on_status, &rx);
   pump(lcm, 500);  // the daemon subscribes
@@ -75,7 +91,6 @@ TEST(TrackerDaemon, ObservationsInModelsOutGarbageCounted) {
   const auto g = synthetic::make_stair(9, 0.17, 0.28, 1.5);
   synthetic::ObservationMaker maker(g, 11, 256);
   const auto cams = synthetic::walk(g, true, 0.6, 30.0);
-  const int n = 60;
   for (int k = 0; k < n; ++k) {
     const stair_observation_t msg = to_lcm(maker.make(cams[k], k * 33333), k * 33333 + 1000);
     lcm.publish("TRK_TEST_OBS", &msg);
@@ -86,17 +101,42 @@ TEST(TrackerDaemon, ObservationsInModelsOutGarbageCounted) {
     pump(lcm, 15);
   }
   pump(lcm, 1500);  // the last models and a status message arrive
+  EXPECT_EQ(waitpid(pid, nullptr, WNOHANG), 0) << "the daemon died";
 
+  kill(pid, SIGTERM);
+  int status = 0;
+  EXPECT_EQ(waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  return rx;
+}
+
+}  // namespace
+
+TEST(TrackerDaemon, ObservationsInModelsOutGarbageCounted) {
+  if (!stairs::test::ensure_multicast_loopback(kUrl)) GTEST_SKIP() << stairs::test::kMulticastSkipReason;
+  const int n = 60;
+  const Received rx = run_tracker({}, n);
   EXPECT_EQ(rx.models, n);
   EXPECT_EQ(rx.bad_models, 0);
   EXPECT_GT(rx.max_fused, n / 2);
   EXPECT_GE(rx.steps, 4);
   EXPECT_EQ(rx.invalid, 1);
-  EXPECT_EQ(waitpid(pid, nullptr, WNOHANG), 0) << "the daemon died";
+  EXPECT_GT(rx.camera_valid, n / 2);
+  EXPECT_EQ(rx.base_valid, 0) << "no mount, no base";
+}
 
-  kill(pid, SIGTERM);
-  int status = 0;
-  ASSERT_EQ(waitpid(pid, &status, 0), pid);
-  EXPECT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0);
+// Issue 15: with the robot's mount in its config (config/stairs-sim-robot.json) every model with a
+// camera carries the robot's base, 0.45 m from the camera along the base's z axis.
+TEST(TrackerDaemon, AMountInTheConfigGivesTheRobotsBase) {
+  if (!stairs::test::ensure_multicast_loopback(kUrl)) GTEST_SKIP() << stairs::test::kMulticastSkipReason;
+  const int n = 60;
+  const Received rx =
+      run_tracker({"--config", std::string(STAIRS_SOURCE_DIR) + "/config/stairs-sim-robot.json"}, n);
+  EXPECT_EQ(rx.models, n);
+  EXPECT_EQ(rx.bad_models, 0);
+  EXPECT_GT(rx.camera_valid, n / 2);
+  EXPECT_EQ(rx.base_valid, rx.camera_valid);
+  EXPECT_NEAR(rx.min_base_offset_m, 0.45, 1e-5);
+  EXPECT_NEAR(rx.max_base_offset_m, 0.45, 1e-5);
 }

@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
       .add("odometry-channel", "NAME", "channel of optional odometry (pose_t, bot_core.pose_t's layout)",
            "STAIRS_ODOMETRY")
       .add("status-channel", "NAME", "channel of daemon_status_t", "STAIRS_STATUS")
-      .config_options("\"stair\" and \"tracker\"")
+      .config_options("\"stair\", \"mount\" (the robot's base in the models) and \"tracker\"")
       .add("reset-after-s", "S", "a model lost this long is dropped when a stair is in view again (overrides --config)", "")
       .add("verbose", "", "print the status line once a second even without a terminal");
   opts.parse(argc, argv);
@@ -108,6 +108,7 @@ int main(int argc, char** argv) {
 
   if (opts.flag("print-config")) {
     stairs::print_config(std::cout, {{"stair", stairs::config_to_json(stairs::stair_definition(config))},
+                                     {"mount", stairs::config_to_json(config.mount)},
                                      {"tracker", stairs::to_json(config)}});
     return 0;
   }
