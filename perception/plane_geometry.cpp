@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numeric>
 #include <tuple>
 #include <utility>
@@ -46,33 +48,46 @@ struct Group {
   PlaneKind kind = PlaneKind::Other;
 };
 
-// The q and 1-q percentiles (q <= 0.5), exactly, in three linear passes
-// instead of two selections: a histogram of the values finds the bucket
-// holding each rank, and only that bucket's values are selected among.
-std::pair<float, float> trimmed_range(const std::vector<float>& v, float q, std::vector<float>& bucket) {
+// Buffers of trimmed_range, reused across calls.
+struct RankScratch {
+  std::vector<uint8_t> bucket_of;  // each value's histogram bucket
+  std::vector<float> lo, hi;       // the values of the buckets holding the two ranks
+};
+
+// The q and 1-q percentiles (q <= 0.5) of v, whose range [lo, hi] the caller
+// found, exactly, in two linear passes instead of two selections: a histogram
+// of the values finds the bucket holding each rank, and only those buckets'
+// values are selected among.
+std::pair<float, float> trimmed_range(const std::vector<float>& v, float lo, float hi, float q, RankScratch& x) {
   const size_t n = v.size();
+  if (!(hi > lo)) return {lo, hi};
   const auto rank = [&](float p) { return std::min(n - 1, static_cast<size_t>(p * (n - 1))); };
   const size_t ranks[2] = {rank(q), rank(1.0f - q)};
-  const auto [lo_it, hi_it] = std::minmax_element(v.begin(), v.end());
-  const float lo = *lo_it, hi = *hi_it;
-  if (!(hi > lo)) return {lo, hi};
   constexpr int kBuckets = 256;
   const float scale = (kBuckets - 1) / (hi - lo);
-  const auto bucket_of = [&](float x) { return std::min(kBuckets - 1, static_cast<int>((x - lo) * scale)); };
   std::array<uint32_t, kBuckets> count{};
-  for (float x : v) ++count[bucket_of(x)];
-  float out[2];
-  for (int i = 0; i < 2; ++i) {
-    size_t below = 0;
-    int b = 0;
-    while (below + count[b] <= ranks[i]) below += count[b++];
-    bucket.clear();
-    for (float x : v)
-      if (bucket_of(x) == b) bucket.push_back(x);
-    std::nth_element(bucket.begin(), bucket.begin() + (ranks[i] - below), bucket.end());
-    out[i] = bucket[ranks[i] - below];
+  x.bucket_of.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const int b = std::min(kBuckets - 1, static_cast<int>((v[i] - lo) * scale));
+    x.bucket_of[i] = static_cast<uint8_t>(b);
+    ++count[b];
   }
-  return {out[0], out[1]};
+  int bucket[2];
+  size_t below[2];
+  for (int k = 0; k < 2; ++k) {
+    below[k] = 0;
+    bucket[k] = 0;
+    while (below[k] + count[bucket[k]] <= ranks[k]) below[k] += count[bucket[k]++];
+  }
+  x.lo.clear();
+  x.hi.clear();
+  for (size_t i = 0; i < n; ++i) {
+    if (x.bucket_of[i] == bucket[0]) x.lo.push_back(v[i]);
+    if (x.bucket_of[i] == bucket[1]) x.hi.push_back(v[i]);
+  }
+  std::nth_element(x.lo.begin(), x.lo.begin() + (ranks[0] - below[0]), x.lo.end());
+  std::nth_element(x.hi.begin(), x.hi.begin() + (ranks[1] - below[1]), x.hi.end());
+  return {x.lo[ranks[0] - below[0]], x.hi[ranks[1] - below[1]]};
 }
 
 // Groups whose keys share a bin merge; then each group merges at most once with
@@ -176,7 +191,8 @@ std::vector<Group> merge(Classified c, const std::vector<Segment>& segments, con
 
 // Scratch buffers of extents(), reused across planes.
 struct ExtentScratch {
-  std::vector<float> ss, ts, zs, bucket;
+  std::vector<float> ss, ts, zs;
+  RankScratch ranks;
 };
 
 // Extents along the axis (s), across it (t) and up (z), trimmed percentiles;
@@ -188,18 +204,22 @@ PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Ei
   x.ts.clear();
   x.zs.clear();
   centroid = Eigen::Vector3f::Zero();
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};  // s, t, z ranges, found on the way
   for (int c : cells) {
     const Eigen::Vector3f q = R * g.points[c];
     centroid += q;
-    x.ss.push_back(cy * q.x() + sy * q.y());
-    x.ts.push_back(-sy * q.x() + cy * q.y());
-    x.zs.push_back(q.z());
+    const float st[3] = {cy * q.x() + sy * q.y(), -sy * q.x() + cy * q.y(), q.z()};
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], st[k]), hi[k] = std::max(hi[k], st[k]);
+    x.ss.push_back(st[0]);
+    x.ts.push_back(st[1]);
+    x.zs.push_back(st[2]);
   }
   centroid /= static_cast<float>(cells.size());
   PlaneExtent e;
-  std::tie(e.s_min, e.s_max) = trimmed_range(x.ss, cfg.extent_percentile, x.bucket);
-  std::tie(e.t_min, e.t_max) = trimmed_range(x.ts, cfg.extent_percentile, x.bucket);
-  std::tie(e.z_min, e.z_max) = trimmed_range(x.zs, cfg.extent_percentile, x.bucket);
+  std::tie(e.s_min, e.s_max) = trimmed_range(x.ss, lo[0], hi[0], cfg.extent_percentile, x.ranks);
+  std::tie(e.t_min, e.t_max) = trimmed_range(x.ts, lo[1], hi[1], cfg.extent_percentile, x.ranks);
+  std::tie(e.z_min, e.z_max) = trimmed_range(x.zs, lo[2], hi[2], cfg.extent_percentile, x.ranks);
   // Normals exist from margin_cells inside the grid: a plane whose top
   // reaches the upper margin may continue above the view.
   const int margin = g.margin_cells + 1;
