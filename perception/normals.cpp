@@ -89,7 +89,10 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
     column_sums(band, K.width, v0, cp, cols, lo, climit, csum, ccount, crows);
     for (int gx = 0; gx < g.width; ++gx) {
       const int i = g.index(gx, gy);
+      // Every cell is written, those without a point as zeros: the grid is not cleared per frame.
       g.has_point[i] = 0;
+      g.points[i].setZero();
+      s.x[i] = s.y[i] = s.z[i] = s.iz[i] = 0.0f;
       const uint16_t d_min = s.cell_min[gx];
       if (d_min == 65535) continue;
       uint32_t sum = 0, n = 0, su = 0, sv = 0;
@@ -113,28 +116,6 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
   }
 }
 
-// A row of cells (normal and depth, struct-of-arrays) and its neighbours at one offset.
-struct RowView {
-  const float *nx, *ny, *nz, *z;
-  RowView at(int offset) const { return {nx + offset, ny + offset, nz + offset, z + offset}; }
-};
-
-// Adds each neighbour's normal to its cell's sum when both lie on one surface.
-void smooth_row(RowView c, RowView k, int count, float cos_smooth, float jump, float* __restrict sx,
-                float* __restrict sy, float* __restrict sz) {
-  for (int i = 0; i < count; ++i) {
-    const float dot = k.nx[i] * c.nx[i] + k.ny[i] * c.ny[i] + k.nz[i] * c.nz[i];
-    const float near_z = c.z[i] < k.z[i] ? c.z[i] : k.z[i];
-    const float dz = c.z[i] - k.z[i], limit = jump * near_z;
-    // Selects, not branches, so that it vectorises (-fopt-info-vec).
-    float w = dot > cos_smooth ? 1.0f : 0.0f;
-    w = dz <= limit ? w : 0.0f;
-    w = -dz <= limit ? w : 0.0f;
-    sx[i] += w * k.nx[i];
-    sy[i] += w * k.ny[i];
-    sz[i] += w * k.nz[i];
-  }
-}
 
 // Lane masks (0 or all ones) and m ? a : b on the bits: the compiler keeps a
 // ternary of floats or a bool as a branch, which stops a loop from vectorising
@@ -149,6 +130,32 @@ inline float select(Mask m, float a, float b) {
   float out;
   std::memcpy(&out, &r, sizeof out);
   return out;
+}
+
+// Each cell's normal summed with those of its 3x3 neighbours that lie on its
+// surface (close in angle, no depth jump), in one pass over the row: the nine
+// offsets in registers, not nine passes that add into the sums in memory. The
+// terms are added in the same order (rows above to below, left to right).
+[[gnu::noinline]] void smooth_row(const float* __restrict nx, const float* __restrict ny, const float* __restrict nz,
+                                  const float* __restrict z, int c0, int stride, int count, float cos_smooth,
+                                  float jump, float* __restrict sx, float* __restrict sy, float* __restrict sz) {
+  for (int i = c0; i < c0 + count; ++i) {
+    const float cx = nx[i], cy = ny[i], cz = nz[i], zc = z[i];
+    float ax = 0.0f, ay = 0.0f, az = 0.0f;
+    const auto add = [&](int k) {
+      const float dot = nx[k] * cx + ny[k] * cy + nz[k] * cz;
+      const float near_z = select(mask(zc < z[k]), zc, z[k]);
+      const float dz = zc - z[k], limit = jump * near_z;
+      // Mask selects, not branches, so that it vectorises (-fopt-info-vec).
+      const float w = select(mask(dot > cos_smooth) & mask(dz <= limit) & mask(-dz <= limit), 1.0f, 0.0f);
+      ax += w * nx[k];
+      ay += w * ny[k];
+      az += w * nz[k];
+    };
+    const int up = i - stride, down = i + stride;
+    add(up - 1), add(up), add(up + 1), add(i - 1), add(i), add(i + 1), add(down - 1), add(down), add(down + 1);
+    sx[i] = ax, sy[i] = ay, sz[i] = az;
+  }
 }
 
 // Points of a row of cells, struct-of-arrays, from some first cell on.
@@ -205,6 +212,21 @@ void raw_normals(const NormalsConfig& cfg, NormalGrid& g) {
   NormalGrid::Scratch& s = g.scratch;
   const RowPoints all{s.x.data(), s.y.data(), s.z.data(), s.iz.data()};
   const float jump = cfg.jump_ratio * 2 * r;
+  // No normal within r of the border: rows above and below, columns left and right.
+  const auto clear = [&](size_t from, size_t count) {
+    for (float* v : {s.nx.data(), s.ny.data(), s.nz.data()}) std::fill(v + from, v + from + count, 0.0f);
+  };
+  const int w = g.width, h = g.height;
+  if (2 * r >= w || 2 * r >= h) {
+    clear(0, static_cast<size_t>(w) * h);
+  } else {
+    clear(0, static_cast<size_t>(r) * w);
+    clear(static_cast<size_t>(h - r) * w, static_cast<size_t>(r) * w);
+    for (int gy = r; gy < h - r; ++gy) {
+      clear(static_cast<size_t>(gy) * w, r);
+      clear(static_cast<size_t>(gy) * w + w - r, r);
+    }
+  }
   for (int gy = r; gy < g.height - r; ++gy) {
     const int c = g.index(r, gy);
     normals_row(all.at(c), all.at(c - r), all.at(c + r), all.at(c - r * g.width), all.at(c + r * g.width),
@@ -213,7 +235,7 @@ void raw_normals(const NormalsConfig& cfg, NormalGrid& g) {
   }
   for (size_t i = 0; i < g.normals.size(); ++i) {
     g.has_normal[i] = s.nx[i] != 0.0f || s.ny[i] != 0.0f || s.nz[i] != 0.0f;
-    if (!cfg.smooth) g.normals[i] = {s.nx[i], s.ny[i], s.nz[i]};  // else smooth_normals writes them
+    g.normals[i] = {s.nx[i], s.ny[i], s.nz[i]};  // smooth_normals overwrites those with a normal
   }
 }
 
@@ -227,14 +249,9 @@ void smooth_normals(const NormalsConfig& cfg, NormalGrid& g) {
   for (auto* v : {&sc.sx, &sc.sy, &sc.sz}) v->assign(n, 0.0f);
   const float cos_smooth = std::cos(cfg.smooth_max_angle_deg * static_cast<float>(M_PI) / 180.0f);
   const float jump = cfg.jump_ratio * 2 * cfg.radius_cells;
-  const RowView all{sc.nx.data(), sc.ny.data(), sc.nz.data(), sc.z.data()};
-  for (int gy = 1; gy < g.height - 1; ++gy) {
-    const int c0 = gy * g.width + 1, count = g.width - 2;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx)
-        smooth_row(all.at(c0), all.at(c0 + dy * g.width + dx), count, cos_smooth, jump, sc.sx.data() + c0,
-                   sc.sy.data() + c0, sc.sz.data() + c0);
-  }
+  for (int gy = 1; gy < g.height - 1; ++gy)
+    smooth_row(sc.nx.data(), sc.ny.data(), sc.nz.data(), sc.z.data(), gy * g.width + 1, g.width, g.width - 2,
+               cos_smooth, jump, sc.sx.data(), sc.sy.data(), sc.sz.data());
   for (size_t i = 0; i < n; ++i)
     if (g.has_normal[i]) g.normals[i] = Eigen::Vector3f(sc.sx[i], sc.sy[i], sc.sz[i]).normalized();
 }
@@ -247,12 +264,14 @@ void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGr
   g.width = frame.K.width / g.cell_px;
   g.height = frame.K.height / g.cell_px;
   const size_t n = static_cast<size_t>(g.width) * g.height;
-  g.points.assign(n, Eigen::Vector3f::Zero());
-  g.normals.assign(n, Eigen::Vector3f::Zero());
+  // Sized, not cleared: cell_means writes every point, raw_normals every normal
+  // (the border rows and columns it leaves out are cleared there).
+  g.points.resize(n);
+  g.normals.resize(n);
   for (auto* v : {&g.scratch.x, &g.scratch.y, &g.scratch.z, &g.scratch.iz, &g.scratch.nx, &g.scratch.ny, &g.scratch.nz})
-    v->assign(n, 0.0f);
-  g.has_point.assign(n, 0);
-  g.has_normal.assign(n, 0);
+    v->resize(n);
+  g.has_point.resize(n);
+  g.has_normal.resize(n);
   if (n == 0) return;
   cell_means(frame, cfg, g);
   raw_normals(cfg, g);
