@@ -97,7 +97,8 @@ struct Step {
 };
 
 // Step::inferred bits (stair_observation_t.step_inferred).
-constexpr uint8_t kStepRiserInferred = 1;   // riser height not measured: the chain's median rise
+constexpr uint8_t kStepRiserInferred = 1;   // riser height not measured: the chain's median rise,
+                                            // or a level from a riser's top (a nosing may hide it)
 constexpr uint8_t kStepNosingInferred = 2;  // nosing height from the median rise (riser top out of view)
 constexpr uint8_t kStepWidthPartial = 4;    // width is what was seen: the tread is cut by the view
 constexpr uint8_t kStepTreadPartial = 8;    // tread depth is the visible part only (no next nosing)

@@ -66,6 +66,12 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
     Step s;
     s.tread_plane = tread.plane;
     s.riser_height_m = tread.z - below.z;
+    // A riser's top is no measured level: under a nosing overhang it is the
+    // slab's underside, a slab's thickness below the tread (an independent
+    // simulator's steep flight with 3 cm nosings lost 1.7 cm of rise this way).
+    // The rise is then a prior, flagged: the tracker takes it from the fused
+    // nosing heights, and verification's regularity does not judge it.
+    if (tread.riser_top || below.riser_top) s.inferred |= kStepRiserInferred;
     // Going down the nosing is the depth jump at the tread's far end where one
     // shows it: the plane's trimmed extent stops short of the edge's cells.
     float nosing_s = up ? tread.s_min : tread.far_edge ? tread.edge_s : tread.s_max;
