@@ -50,6 +50,9 @@ void column_sums(const uint16_t* band, int stride, int v0, int rows, int cols, u
 // Each cell is the mean of its nearest surface (pixels within jump_ratio of its nearest one): a mean
 // across a depth edge would float between surfaces. Near, a sparse cell is flying pixels; at range
 // the sensor drops many, so the valid fraction needed falls as 1/z beyond cell_valid_fraction_range_m.
+// kCellPx: the cell side when known at compile time (0: g.cell_px), so that
+// the loops over a cell's columns unroll (they were a quarter of the stage).
+template <int kCellPx>
 void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g) {
   const Intrinsics& K = frame.K;
   const uint16_t lo = static_cast<uint16_t>(std::clamp(cfg.min_depth_m / frame.depth_scale, 1.0, 65535.0));
@@ -57,7 +60,8 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
   const uint16_t span = static_cast<uint16_t>(hi - lo);
   const float cell_area = static_cast<float>(g.cell_px * g.cell_px);
   const float range_units = static_cast<float>(cfg.cell_valid_fraction_range_m / frame.depth_scale);
-  const int cp = g.cell_px, cols = g.width * cp;
+  const int cp = kCellPx > 0 ? kCellPx : g.cell_px, cols = g.width * cp;
+  const float jump_ratio = cfg.jump_ratio;
   const float scale = static_cast<float>(frame.depth_scale), cx = static_cast<float>(K.cx),
               cy = static_cast<float>(K.cy), inv_fx = static_cast<float>(1.0 / K.fx),
               inv_fy = static_cast<float>(1.0 / K.fy);
@@ -68,6 +72,7 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
   s.column_count.resize(cols);
   s.column_row_sum.resize(cols);
   s.cell_min.resize(g.width);
+  s.cell_limit.resize(g.width);
   uint16_t* cmin = s.column_min.data();
   uint16_t* climit = s.column_limit.data();
   uint32_t* csum = s.column_sum.data();
@@ -80,12 +85,22 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
     const uint16_t* band = frame.depth.data() + static_cast<size_t>(v0) * K.width;
     column_nearest(band, K.width, cp, cols, lo, span, cmin);
     for (int gx = 0; gx < g.width; ++gx) {
-      const uint16_t m = *std::min_element(cmin + gx * cp, cmin + (gx + 1) * cp);
+      const uint16_t* c = cmin + gx * cp;
+      uint16_t m = c[0];
+      for (int k = 1; k < cp; ++k) m = std::min(m, c[k]);
       s.cell_min[gx] = m;
-      // No valid pixel: a limit below every valid depth (lo >= 1).
-      const uint32_t limit = m == 65535 ? 0u : m + static_cast<uint32_t>(cfg.jump_ratio * m);
-      std::fill(climit + gx * cp, climit + (gx + 1) * cp, static_cast<uint16_t>(std::min<uint32_t>(limit, 65535)));
     }
+    // The depth limit of each cell's nearest surface; no valid pixel: a limit
+    // below every valid depth (lo >= 1). Signed 32-bit arithmetic and selects,
+    // so that it vectorises (the depths fit, the product truncates alike).
+    for (int gx = 0; gx < g.width; ++gx) {
+      const int32_t m = s.cell_min[gx];
+      int32_t limit = m + static_cast<int32_t>(jump_ratio * static_cast<float>(m));
+      limit = limit > 65535 ? 65535 : limit;
+      s.cell_limit[gx] = static_cast<uint16_t>(m == 65535 ? 0 : limit);
+    }
+    for (int gx = 0; gx < g.width; ++gx)
+      for (int k = 0; k < cp; ++k) climit[gx * cp + k] = s.cell_limit[gx];
     column_sums(band, K.width, v0, cp, cols, lo, climit, csum, ccount, crows);
     for (int gx = 0; gx < g.width; ++gx) {
       const int i = g.index(gx, gy);
@@ -273,7 +288,12 @@ void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGr
   g.has_point.resize(n);
   g.has_normal.resize(n);
   if (n == 0) return;
-  cell_means(frame, cfg, g);
+  switch (g.cell_px) {  // the common cell sides unrolled (grid_cell_px; 640 / 320 wide and Kinect v2)
+    case 2: cell_means<2>(frame, cfg, g); break;
+    case 3: cell_means<3>(frame, cfg, g); break;
+    case 4: cell_means<4>(frame, cfg, g); break;
+    default: cell_means<0>(frame, cfg, g);
+  }
   raw_normals(cfg, g);
   if (cfg.smooth) smooth_normals(cfg, g);
 }

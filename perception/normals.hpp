@@ -26,7 +26,7 @@ struct NormalGrid {
   struct Scratch {
     std::vector<uint16_t> column_min, column_limit;
     std::vector<uint32_t> column_sum, column_count, column_row_sum;
-    std::vector<uint16_t> cell_min;
+    std::vector<uint16_t> cell_min, cell_limit;
     std::vector<float> x, y, z, iz;  // points and 1/z, struct-of-arrays (0: no point)
     std::vector<float> nx, ny, nz;   // normals, struct-of-arrays (0: no normal)
     std::vector<float> sx, sy, sz;   // smoothing sums
