@@ -229,11 +229,13 @@ PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Ei
   std::tie(e.z_min, e.z_max) = trimmed_range(x.zs, lo[2], hi[2], cfg.extent_percentile, x.ranks);
   // Normals exist from margin_cells inside the grid: a plane whose top
   // reaches the upper margin may continue above the view.
+  // Rows by index bounds: row > margin is index >= (margin + 1) * width (no division per cell).
   const int margin = g.margin_cells + 1;
+  const int below_top = (margin + 1) * g.width, above_bottom = (g.height - 1 - margin) * g.width;
   for (size_t k = 0; k < cells.size() && e.top_in_view; ++k)
-    e.top_in_view = x.zs[k] < e.z_max - cfg.view_edge_band_m || cells[k] / g.width > margin;
+    e.top_in_view = x.zs[k] < e.z_max - cfg.view_edge_band_m || cells[k] >= below_top;
   for (size_t k = 0; k < cells.size() && e.bottom_in_view; ++k)
-    e.bottom_in_view = x.zs[k] > e.z_min + cfg.view_edge_band_m || cells[k] / g.width < g.height - 1 - margin;
+    e.bottom_in_view = x.zs[k] > e.z_min + cfg.view_edge_band_m || cells[k] < above_bottom;
   e.s_mean = cy * centroid.x() + sy * centroid.y();
   e.z_mean = centroid.z();
   return e;
