@@ -131,7 +131,6 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
   }
 }
 
-
 // Lane masks (0 or all ones) and m ? a : b on the bits: the compiler keeps a
 // ternary of floats or a bool as a branch, which stops a loop from vectorising
 // (-fopt-info-vec); these do not.
@@ -255,9 +254,9 @@ void raw_normals(const NormalsConfig& cfg, NormalGrid& g) {
 }
 
 // 3x3 mean over neighbours on the same surface: noise down, edges kept. On
-// struct-of-arrays copies, one neighbour offset at a time along a row, so the
-// compiler runs four cells per instruction. A cell without a normal has a
-// zero one (its dot is 0, never above cos_smooth) and adds nothing.
+// struct-of-arrays copies, a row at a time (smooth_row), so the compiler runs
+// four cells per instruction. A cell without a normal has a zero one (its dot
+// is 0, never above cos_smooth) and adds nothing.
 void smooth_normals(const NormalsConfig& cfg, NormalGrid& g) {
   const size_t n = g.normals.size();
   NormalGrid::Scratch& sc = g.scratch;
