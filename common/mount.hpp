@@ -60,4 +60,14 @@ inline Eigen::Isometry3d camera_in_base(const MountConfig& m) {
   return T;
 }
 
+// The base pose of a carrier whose camera is posed at position_m with orientation (optical frame
+// -> a z-up frame: the tracker's model, the stair's ground truth), through the mount.
+inline Eigen::Isometry3d base_of_camera(const Eigen::Vector3d& position_m, const Eigen::Quaterniond& orientation,
+                                        const MountConfig& m) {
+  Eigen::Isometry3d camera = Eigen::Isometry3d::Identity();
+  camera.linear() = orientation.normalized().toRotationMatrix();
+  camera.translation() = position_m;
+  return camera * camera_in_base(m).inverse();
+}
+
 }  // namespace stairs

@@ -102,6 +102,11 @@ int true_step_at(double x_m, const std::vector<Step>& real) {
   return level;
 }
 
+// The real surface's height at a level of true_step_at: the floor (0) below the first step.
+double true_surface_z(int level, const std::vector<Step>& real) {
+  return level < 0 ? 0.0 : real[static_cast<size_t>(level)].nosing_m.z();
+}
+
 int true_step_beneath(const GroundTruthFrame& frame, const std::vector<Step>& real) {
   return true_step_at(frame.position_m.x(), real);
 }
@@ -129,7 +134,7 @@ bool beneath_in_view(const GroundTruthFrame& frame, const std::vector<Step>& rea
   const Eigen::Vector3d& p = frame.position_m;
   const double forward_x = gravity_frame_in_stair(frame).linear()(0, 0);  // +1 walking up the x axis
   const int level = true_step_beneath(frame, real);
-  const double surface_z = level < 0 ? 0.0 : real[static_cast<size_t>(level)].nosing_m.z();
+  const double surface_z = true_surface_z(level, real);
   // Where that level ends ahead of the camera (none: it runs on).
   std::optional<double> end_x;
   if (forward_x > 0 && level + 1 < static_cast<int>(real.size())) end_x = real[static_cast<size_t>(level + 1)].nosing_m.x();
@@ -303,12 +308,9 @@ void score_tracked_camera(const FrameResult& f, const GroundTruthFrame& gt, cons
 void score_tracked_base(const FrameResult& f, const GroundTruthFrame& gt, const std::vector<Step>& real,
                         const MountConfig& mount, FrameScore& fs, Score& s, RunSums& sums) {
   if (!mount.configured() || !f.tracked_base || !f.tracked_base->valid) return;
-  Eigen::Isometry3d camera = Eigen::Isometry3d::Identity();
-  camera.linear() = gt.orientation.normalized().toRotationMatrix();
-  camera.translation() = gt.position_m;
-  const Eigen::Vector3d base = (camera * camera_in_base(mount).inverse()).translation();
+  const Eigen::Vector3d base = base_of_camera(gt.position_m, gt.orientation, mount).translation();
   const int level = true_step_at(base.x(), real);
-  const double surface_z = level < 0 ? 0.0 : real[static_cast<size_t>(level)].nosing_m.z();
+  const double surface_z = true_surface_z(level, real);
   fs.true_base_step_index = level;
   ++s.tracked_base_frames;
   const TrackedCamera& tb = *f.tracked_base;

@@ -118,14 +118,11 @@ void place_camera(const Pose4& camera, const Eigen::Quaterniond& gravity_rotatio
   out.camera_beneath_known = over_seen_part(last, origin, cam.x());
 }
 
-// The carrier's base from the placed camera and the mount (common/mount.hpp camera_in_base).
+// The carrier's base from the placed camera and the mount (common/mount.hpp base_of_camera).
 void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const MapStep& last, StairModel& out) {
   out.base_valid = out.camera_valid && mount.configured();
   if (!out.base_valid) return;
-  Eigen::Isometry3d camera = Eigen::Isometry3d::Identity();
-  camera.linear() = out.camera_orientation.normalized().toRotationMatrix();
-  camera.translation() = out.camera_position_m;
-  const Eigen::Isometry3d base = camera * camera_in_base(mount).inverse();
+  const Eigen::Isometry3d base = base_of_camera(out.camera_position_m, out.camera_orientation, mount);
   out.base_position_m = base.translation();
   out.base_orientation = Eigen::Quaterniond(base.linear()).normalized();
   const Beneath b = beneath(out, out.base_position_m.x());
