@@ -64,12 +64,15 @@ void pump(lcm::LCM& lcm, int ms) {
 }
 
 // Runs the daemon with `extra` options on a synthetic ascent of `n` observations (a garbage message
-// after the 21st) and returns what it published; the daemon must survive and stop cleanly.
-Received run_tracker(const std::vector<std::string>& extra, int n) {
+// after the 21st) and returns what it published; the daemon must survive and stop cleanly. Its
+// channels end in `tag`: tests that ctest runs at once share the multicast group, not the channels.
+Received run_tracker(const std::string& tag, const std::vector<std::string>& extra, int n) {
   Received rx;
   const std::string exe = std::string(STAIRS_BINARY_DIR) + "/bin/stairs-tracker";
-  std::vector<std::string> args = {exe, "--lcm-url", kUrl, "--observation-channel", "TRK_TEST_OBS",
-                                   "--model-channel", "TRK_TEST_MODEL", "--status-channel", "TRK_TEST_STATUS",
+  const std::string obs_channel = "TRK_TEST_OBS_" + tag, model_channel = "TRK_TEST_MODEL_" + tag,
+                    status_channel = "TRK_TEST_STATUS_" + tag;
+  std::vector<std::string> args = {exe, "--lcm-url", kUrl, "--observation-channel", obs_channel,
+                                   "--model-channel", model_channel, "--status-channel", status_channel,
                                    "--reset-after-s", "3"};
   args.insert(args.end(), extra.begin(), extra.end());
   std::vector<char*> argv;
@@ -84,8 +87,8 @@ Received run_tracker(const std::vector<std::string>& extra, int n) {
   }
   lcm::LCM lcm(kUrl);
   EXPECT_TRUE(lcm.good());
-  lcm.subscribe("TRK_TEST_MODEL", &Received::on_model, &rx);
-  lcm.subscribe("TRK_TEST_STATUS", &Received::on_status, &rx);
+  lcm.subscribe(model_channel, &Received::on_model, &rx);
+  lcm.subscribe(status_channel, &Received::on_status, &rx);
   pump(lcm, 500);  // the daemon subscribes
 
   const auto g = synthetic::make_stair(9, 0.17, 0.28, 1.5);
@@ -93,10 +96,10 @@ Received run_tracker(const std::vector<std::string>& extra, int n) {
   const auto cams = synthetic::walk(g, true, 0.6, 30.0);
   for (int k = 0; k < n; ++k) {
     const stair_observation_t msg = to_lcm(maker.make(cams[k], k * 33333), k * 33333 + 1000);
-    lcm.publish("TRK_TEST_OBS", &msg);
+    lcm.publish(obs_channel, &msg);
     if (k == 20) {
       const std::string garbage = "not an observation at all";
-      lcm.publish("TRK_TEST_OBS", garbage.data(), static_cast<unsigned>(garbage.size()));
+      lcm.publish(obs_channel, garbage.data(), static_cast<unsigned>(garbage.size()));
     }
     pump(lcm, 15);
   }
@@ -116,7 +119,7 @@ Received run_tracker(const std::vector<std::string>& extra, int n) {
 TEST(TrackerDaemon, ObservationsInModelsOutGarbageCounted) {
   if (!stairs::test::ensure_multicast_loopback(kUrl)) GTEST_SKIP() << stairs::test::kMulticastSkipReason;
   const int n = 60;
-  const Received rx = run_tracker({}, n);
+  const Received rx = run_tracker("PLAIN", {}, n);
   EXPECT_EQ(rx.models, n);
   EXPECT_EQ(rx.bad_models, 0);
   EXPECT_GT(rx.max_fused, n / 2);
@@ -132,7 +135,7 @@ TEST(TrackerDaemon, AMountInTheConfigGivesTheRobotsBase) {
   if (!stairs::test::ensure_multicast_loopback(kUrl)) GTEST_SKIP() << stairs::test::kMulticastSkipReason;
   const int n = 60;
   const Received rx =
-      run_tracker({"--config", std::string(STAIRS_SOURCE_DIR) + "/config/stairs-sim-robot.json"}, n);
+      run_tracker("MOUNT", {"--config", std::string(STAIRS_SOURCE_DIR) + "/config/stairs-sim-robot.json"}, n);
   EXPECT_EQ(rx.models, n);
   EXPECT_EQ(rx.bad_models, 0);
   EXPECT_GT(rx.camera_valid, n / 2);
