@@ -169,6 +169,25 @@ struct RegionGrowingConfig {
   }
 };
 
+// --- concave corners (concave_corners.hpp): plane fits away from time-of-flight multipath bands
+struct ConcaveCornersConfig {
+  float band_m = 0.08f;                // m; a corner's band: multipath bias falls off over about this (0 = off)
+  float min_corner_angle_deg = 45.0f;  // deg; planes meeting at least this steeply form a corner
+  float min_behind_m = 0.002f;         // m; band mean behind the rest of the plane that counts as bent
+                                       // (above structured-light quantisation in a cell's mean)
+  float behind_sigmas = 3.0f;          // and above this many standard errors of the band's mean
+  float min_core_fraction = 0.3f;      // a plane with less outside its bands is marked bent: not used for gravity
+
+  template <class V>
+  void visit(V& v) {
+    v("band_m", band_m, 0.0f, 1.0f);
+    v("min_corner_angle_deg", min_corner_angle_deg, 0.0f, 90.0f);
+    v("min_behind_m", min_behind_m, 0.0f, 0.1f);
+    v("behind_sigmas", behind_sigmas, 0.0f, 100.0f);
+    v("min_core_fraction", min_core_fraction, 0.0f, 1.0f);
+  }
+};
+
 // --- gravity (thesis Algorithm 4): up from weighted horizontal normals
 struct GravityConfig {
   float max_tilt_from_image_up_deg = 80.0f;  // deg; horizontal-plane candidates vs. image up
@@ -181,6 +200,11 @@ struct GravityConfig {
                                               // turn this far from the first for up = their cross product
   float consensus_deg = 1.5f;  // deg; a segment agrees with an up when parallel or perpendicular to it within
                                // this: a large plane's normal is good to a fraction of it, a bent tread is not
+  float refine_first_deg = 3.0f;  // deg; the least-squares up's first pass takes the treads this near the
+                                  // consensus up (walls and risers may set it off by a degree or two)
+  float fit_rms_floor_m = 0.001f;  // m; no plane's fit residual counts as smaller (depth resolution)
+  float refine_prior_fraction = 1e-5f;  // directions the treads constrain less than this fraction of their
+                                        // total information keep the consensus up (a lone thin strip)
 
   template <class V>
   void visit(V& v) {
@@ -191,6 +215,9 @@ struct GravityConfig {
     v("min_support_fraction", min_support_fraction, 0.0f, 1.0f);
     v("second_family_min_angle_deg", second_family_min_angle_deg, 1.0f, 90.0f);
     v("consensus_deg", consensus_deg, 0.01f, 45.0f);
+    v("refine_first_deg", refine_first_deg, 0.01f, 45.0f);
+    v("fit_rms_floor_m", fit_rms_floor_m, 1e-6f, 0.1f);
+    v("refine_prior_fraction", refine_prior_fraction, 0.0f, 1.0f);
   }
 };
 
@@ -389,6 +416,7 @@ struct OutputConfig {
 struct PerceptionConfig {
   NormalsConfig normals;
   RegionGrowingConfig region_growing;
+  ConcaveCornersConfig concave_corners;
   GravityConfig gravity;
   ImuConfig imu;
   PlaneGeometryConfig plane_geometry;
@@ -404,6 +432,7 @@ struct PerceptionConfig {
   void visit(V& v) {
     v.section("normals", normals);
     v.section("region_growing", region_growing);
+    v.section("concave_corners", concave_corners);
     v.section("gravity", gravity);
     v.section("imu", imu);
     v.section("plane_geometry", plane_geometry);

@@ -1,5 +1,7 @@
 #include "perception/gravity.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <vector>
 
@@ -18,11 +20,11 @@ std::optional<Family> best_family(const std::vector<Segment>& segments, float co
   Eigen::Vector3f best = Eigen::Vector3f::Zero();
   float best_support = 0;
   for (const Segment& c : segments) {
-    if (!keep(c.normal)) continue;
+    if (c.bent || !keep(c.normal)) continue;
     Eigen::Vector3f sum = Eigen::Vector3f::Zero();
     float support = 0;
     for (const Segment& s : segments)
-      if (s.normal.dot(c.normal) > cos_par) {
+      if (!s.bent && s.normal.dot(c.normal) > cos_par) {
         sum += static_cast<float>(s.cells.size()) * s.normal;
         support += static_cast<float>(s.cells.size());
       }
@@ -35,11 +37,48 @@ std::optional<Family> best_family(const std::vector<Segment>& segments, float co
   return Family{best.normalized(), best_support};
 }
 
+// The up that the horizontal planes within tol_deg of `up` fit best: up is
+// perpendicular to each plane's in-plane axes, each constraint weighted by how
+// well the plane's fit knows it. A normal's tilt towards an in-plane axis has
+// variance rms^2 / (cells * spread along that axis) (a least-squares plane; a
+// thin strip's tilt across it is poorly known, a large flat floor's well).
+// Directions the planes constrain less than cfg.refine_prior_fraction of their
+// total keep `up`. Without planes near it, `up` itself.
+Eigen::Vector3f fit_up(const std::vector<Segment>& segments, const Eigen::Vector3f& up, float tol_deg,
+                       const GravityConfig& cfg) {
+  const float cos_tol = std::cos(tol_deg * static_cast<float>(M_PI) / 180.0f);
+  Eigen::Matrix3d info = Eigen::Matrix3d::Zero();
+  bool any = false;
+  for (const Segment& s : segments) {
+    if (s.bent || s.normal.dot(up) < cos_tol) continue;
+    const double rms = std::max(s.rms_m, cfg.fit_rms_floor_m);
+    const double per_spread = static_cast<double>(s.cells.size()) / (rms * rms);
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Vector3d e = s.axis[k].cast<double>();
+      info += per_spread * s.spread_m2[k] * e * e.transpose();
+    }
+    any = true;
+  }
+  if (!any || !(info.trace() > 0.0)) return up;
+  const Eigen::Vector3d u0 = up.cast<double>();
+  info += cfg.refine_prior_fraction * info.trace() * (Eigen::Matrix3d::Identity() - u0 * u0.transpose());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(info);
+  Eigen::Vector3d u = es.eigenvectors().col(0).normalized();
+  if (u.dot(u0) < 0) u = -u;
+  return u.cast<float>();
+}
+
+// fit_up twice: the planes near the consensus up (wide enough for the treads
+// when up came from walls and risers), then those near that fit.
+Eigen::Vector3f refine(const std::vector<Segment>& segments, const Eigen::Vector3f& up, const GravityConfig& cfg) {
+  return fit_up(segments, fit_up(segments, up, cfg.refine_first_deg, cfg), cfg.consensus_deg, cfg);
+}
+
 // Up as most planes agree on it: horizontal segments parallel to it, vertical
 // ones (risers, walls) perpendicular. Each candidate (the family's mean and
 // the segments `candidate` accepts) is scored by the cells of the segments
-// within cfg.consensus_deg of agreeing with it; up is the mean over the best
-// one's parallel agreeing segments. The family's mean alone is pulled by a
+// within cfg.consensus_deg of agreeing with it; up is then fitted to the
+// horizontal segments near the best one (refine). The family's mean alone is pulled by a
 // plane that is bent as a whole, and a large bent one can be the family (a
 // floor or tread in a time-of-flight sensor's multipath band; thesis 3.5
 // averages the family).
@@ -51,6 +90,7 @@ Eigen::Vector3f consensus_up(const std::vector<Segment>& segments, const Eigen::
   auto score = [&](const Eigen::Vector3f& u) {
     float sc = 0.0f;
     for (const Segment& s : segments) {
+      if (s.bent) continue;
       const float c = std::abs(s.normal.dot(u));
       if (c >= cos_agree || c <= sin_agree) sc += static_cast<float>(s.cells.size());
     }
@@ -59,17 +99,17 @@ Eigen::Vector3f consensus_up(const std::vector<Segment>& segments, const Eigen::
   Eigen::Vector3f best = family_up;
   float best_score = score(family_up);
   for (const Segment& c : segments) {
-    if (!candidate(c.normal)) continue;
+    if (c.bent || !candidate(c.normal)) continue;
     const float sc = score(c.normal);
     if (sc > best_score) best_score = sc, best = c.normal;
   }
-  // The support-weighted mean of the horizontal segments that agree with it
-  // (vertical ones choose, they do not average: risers' normals are the
-  // noisier, bent at both of their edges).
+  // Fitted to the horizontal segments that agree with it, starting from their
+  // support-weighted mean (vertical ones choose, they do not average: risers'
+  // normals are the noisier, bent at both of their edges).
   Eigen::Vector3f sum = Eigen::Vector3f::Zero();
   for (const Segment& s : segments)
-    if (s.normal.dot(best) >= cos_agree) sum += static_cast<float>(s.cells.size()) * s.normal;
-  return sum.normalized();
+    if (!s.bent && s.normal.dot(best) >= cos_agree) sum += static_cast<float>(s.cells.size()) * s.normal;
+  return refine(segments, sum.normalized(), cfg);
 }
 
 }  // namespace
@@ -113,7 +153,10 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   if (up.dot(*prior) < 0) up = -up;
   up.normalize();
   if (up.dot(*prior) < cos_prior) return std::nullopt;
-  return up;
+  // Walls and risers choose; treads too small to choose still fit it where
+  // they agree (a level camera's far treads and floor: walls and risers, noisy
+  // at 3 m, set it off by a degree or two).
+  return refine(segments, up, cfg);
 }
 
 CameraPose pose_from_up(const Eigen::Vector3f& up_optical) {

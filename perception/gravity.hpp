@@ -9,9 +9,11 @@
 namespace stairs {
 
 // Up in the optical frame (thesis 3.5): the segment normal near image up with the most parallel
-// support, averaged over that set; near the previous frame's up when given. Of the set's members
-// (with a prior, of every plane near it), the one most planes agree with (parallel or perpendicular
-// within consensus_deg) chooses which segments are averaged. Nothing if none fits.
+// support; near the previous frame's up when given. Of the set's members (with a prior, of every
+// plane near it), the one most planes agree with (parallel or perpendicular within consensus_deg)
+// chooses the treads that up is fitted to: least squares, each weighted by how well its fit knows
+// its normal (thesis Algorithm 4 weights by support alone). Segments marked bent
+// (concave_corners.hpp) take no part. Nothing if none fits.
 std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const GravityConfig& cfg,
                                            const std::optional<Eigen::Vector3f>& prior = std::nullopt);
 

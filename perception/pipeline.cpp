@@ -1,6 +1,7 @@
 #include "perception/pipeline.hpp"
 
 #include "perception/camera_height.hpp"
+#include "perception/concave_corners.hpp"
 #include "perception/edges_depth_jumps.hpp"
 #include "perception/edges_normal_image.hpp"
 #include "perception/gravity.hpp"
@@ -62,6 +63,8 @@ Observation Pipeline::process(const DepthImage& frame) {
   clock.mark("normals");
   std::vector<Segment> segments = grow_regions(grid_, cfg_.region_growing, frame.K.width, frame.K.height, labels_);
   clock.mark("region_growing");
+  fit_away_from_concave_corners(grid_, cfg_.concave_corners, segments, in_band_);
+  clock.mark("concave_corners");
   const int64_t gap_us = frame.utime - prior_utime_;
   if (gap_us < 0 || gap_us > cfg_.gravity.prior_max_gap_s * 1e6) up_prior_.reset();
   const std::optional<Eigen::Vector3f> planes_up = estimate_up(segments, cfg_.gravity, up_prior_);

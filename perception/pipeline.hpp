@@ -31,6 +31,7 @@ class Pipeline {
   PerceptionConfig cfg_;
   NormalGrid grid_;          // reused buffers
   std::vector<int> labels_;  // reused buffers
+  std::vector<uint8_t> in_band_;  // reused buffer of fit_away_from_concave_corners
   std::optional<Eigen::Vector3f> up_prior_;  // optical frame, of the frame at prior_utime_
   int64_t prior_utime_ = 0;
   ImuGravity imu_;

@@ -29,6 +29,10 @@ void fit_segment(const NormalGrid& g, Segment& s) {
   s.centroid = mean.cast<float>();
   s.normal = n.normalized().cast<float>();
   s.rms_m = static_cast<float>(std::sqrt(std::max(0.0, es.eigenvalues()(0))));
+  for (int k = 0; k < 2; ++k) {
+    s.axis[k] = es.eigenvectors().col(k + 1).cast<float>();
+    s.spread_m2[k] = static_cast<float>(es.eigenvalues()(k + 1));
+  }
 }
 
 std::vector<Segment> grow_regions(const NormalGrid& g, const RegionGrowingConfig& cfg, int image_width,

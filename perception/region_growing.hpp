@@ -12,6 +12,12 @@ struct Segment {
   Eigen::Vector3f centroid = Eigen::Vector3f::Zero();  // m, optical frame
   Eigen::Vector3f normal = Eigen::Vector3f::UnitZ();   // least-squares, towards the camera
   float rms_m = 0.0f;                                  // point-to-plane
+  // In-plane axes of the cells' spread (unit, optical frame) and the variance along each, m^2:
+  // how well the normal's tilt towards each is known (a thin strip's, across it, poorly).
+  Eigen::Vector3f axis[2] = {Eigen::Vector3f::UnitX(), Eigen::Vector3f::UnitY()};
+  float spread_m2[2] = {0.0f, 0.0f};
+  bool bent = false;  // mostly inside concave corners' bands: its fit may be bent, and nothing is left
+                      // to check it against (concave_corners.hpp); gravity does not use it
 };
 
 // Least-squares plane of the segment's cells (centroid, normal, rms).

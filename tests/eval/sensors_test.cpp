@@ -77,22 +77,19 @@ INSTANTIATE_TEST_SUITE_P(Sim, SensorAccuracy,
                              Walk{"irregular_step_kinect1", "--preset irregular_step --sensor kinect1"},
                              Walk{"irregular_step_kinect2", "--preset irregular_step --sensor kinect2"},
                              Walk{"irregular_step_d435", "--preset irregular_step --sensor d435"},
-                             Walk{"steep_nosing_up_d435", "--preset steep_nosing --sensor d435"}),
+                             Walk{"steep_nosing_up_d435", "--preset steep_nosing --sensor d435"},
+                             Walk{"up_robot_kinect2", "--preset straight_up --carrier robot --sensor kinect2"}),
                          kName);
 
-// Not met yet (measured 2026-12-02, floors unchanged; ctest lists them as
+// Not met yet (measured 2026-12-03, floors unchanged; ctest lists it as
 // "Not Run (Disabled)"):
-// - dark_treads, kinect2: the model holds 10 of 10 steps, but 2 frames show a
-//   false step: with the treads dark, a multipath-bent floor patch is the only
-//   large horizontal plane and tilts gravity (frame 40: 6.5 deg of roll).
-// - up_robot, kinect2 (since the robot became a rigid body, whose camera stays low at the foot of
-//   the flight while the body starts to tilt): 7 of 10 steps, 2 false model steps, 5 false frame
-//   steps, tread 0.59 cm. At 0.47 m, nearly level, the only horizontal plane in view is a strip of
-//   the first tread that multipath bends by up to 4.3 deg (frames 89-93); gravity follows it and the
-//   frames measure treads 1.6 cm short. Up from the risers and walls was tried: 1.8-2.9 deg off.
+// - dark_treads, kinect2: the model holds 10 of 10 steps (riser 0.21 cm, tread 0.09 cm), but 3
+//   frames show a false step. With the treads dark no tread is segmented, so the risers' concave
+//   corners with them are not found (perception/concave_corners.hpp needs both planes) and the
+//   multipath band bends the risers: up from walls and risers is 1-2 deg off, and a tread missing
+//   between two risers reads as one 45 cm tread (frame 66).
 INSTANTIATE_TEST_SUITE_P(DISABLED_NotMet, SensorAccuracy,
-                         ::testing::Values(Walk{"dark_treads_kinect2", "--preset dark_treads --sensor kinect2"},
-                                           Walk{"up_robot_kinect2", "--preset straight_up --carrier robot --sensor kinect2"}),
+                         ::testing::Values(Walk{"dark_treads_kinect2", "--preset dark_treads --sensor kinect2"}),
                          kName);
 
 }  // namespace

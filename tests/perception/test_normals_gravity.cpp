@@ -3,6 +3,8 @@
 #include "perception/region_growing.hpp"
 #include "synthetic.hpp"
 
+#include <Eigen/Geometry>
+
 #include <gtest/gtest.h>
 
 namespace stairs {
@@ -154,6 +156,42 @@ TEST(PerceptionGravity, TinyTreadsYieldToTheVerticalPlanes) {
   const auto up = estimate_up(segs, GravityConfig{}, true_up(9));
   ASSERT_TRUE(up.has_value());
   EXPECT_GT(up->dot(true_up(15)), std::cos(0.1 * M_PI / 180));
+}
+
+// A level camera 0.9 m high before a flight (the level_09m walks): walls and
+// risers dominate the support, and the risers, 3 m away and noisy, lean 1.5
+// deg, so up from walls x risers is 1.5 deg off. The floor and a tread, too
+// small to choose up beside the walls, still fix it where they agree: up is
+// fitted to them, each by how well its own fit knows its normal.
+TEST(PerceptionGravity, TreadsTooSmallToChooseStillFitUp) {
+  const double pitch = -2.4;
+  const Eigen::Matrix3d Rt = test::optical_to_world(pitch, 0).transpose();
+  auto segment = [&](const Eigen::Vector3d& world_normal, size_t cells, const Eigen::Vector3d& a0, double spread0,
+                     const Eigen::Vector3d& a1, double spread1, float rms_m) {
+    Segment s;
+    s.normal = (Rt * world_normal).cast<float>();
+    s.cells.assign(cells, 0);
+    s.axis[0] = (Rt * a0).cast<float>(), s.axis[1] = (Rt * a1).cast<float>();
+    s.spread_m2[0] = static_cast<float>(spread0), s.spread_m2[1] = static_cast<float>(spread1);
+    s.rms_m = rms_m;
+    return s;
+  };
+  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d leaning = Eigen::AngleAxisd(1.5 * M_PI / 180, Y) * -X;
+  std::vector<Segment> segs = {
+      segment(-Y, 6000, X, 1.0, Z, 0.3, 0.0009f),  // the walls
+      segment(leaning, 2500, Y, 0.08, Z, 0.003, 0.006f),  // far risers
+      segment(Z, 360, Y, 0.08, X, 0.004, 0.0015f),  // the floor before the flight: a strip
+      segment(Z, 220, Y, 0.08, X, 0.005, 0.0014f),  // the first tread
+  };
+  const auto up = estimate_up(segs, GravityConfig{}, true_up(pitch - 1.0));
+  ASSERT_TRUE(up.has_value());
+  EXPECT_GT(up->dot(true_up(pitch)), std::cos(0.1 * M_PI / 180));
+  // Without the treads, walls x risers (the branch this refines).
+  segs.resize(2);
+  const auto walls_risers = estimate_up(segs, GravityConfig{}, true_up(pitch - 1.0));
+  ASSERT_TRUE(walls_risers.has_value());
+  EXPECT_LT(walls_risers->dot(true_up(pitch)), std::cos(1.0 * M_PI / 180));
 }
 
 TEST(PerceptionGravity, ABentTreadIsOutvotedByThePlanesThatAgree) {

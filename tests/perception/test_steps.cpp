@@ -166,9 +166,9 @@ TEST(PerceptionSteps, SyntheticAscendingStairsEndToEnd) {
   }
   EXPECT_GE(treads, 4);
   // The normal-image edges are a diagnostic, off by default: no stage of theirs.
-  const std::vector<std::string> names = {"normals",        "region_growing",    "gravity", "plane_geometry",
-                                          "edges_depth_jumps", "steps",          "grammar", "reconstruction",
-                                          "verification"};
+  const std::vector<std::string> names = {"normals",        "region_growing", "concave_corners", "gravity",
+                                          "plane_geometry", "edges_depth_jumps", "steps",        "grammar",
+                                          "reconstruction", "verification"};
   ASSERT_EQ(o.stages.size(), names.size());
   for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(o.stages[i].name, names[i]);
 }

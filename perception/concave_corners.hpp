@@ -1,0 +1,28 @@
+// Stage 2b: plane fits away from concave corners. A time-of-flight sensor
+// (Kinect v2) adds to the path of a pixel near a concave corner the light that
+// the corner's other face bounced onto it (multipath): a band of each plane
+// along the junction lies behind the plane and bends its least-squares fit.
+// Every stair has such junctions (each riser on the tread below it, treads and
+// risers against the walls), and a bent tread tilts gravity (thesis 3.5 takes
+// up from the treads' normals) and every height measured along it.
+#pragma once
+
+#include "perception/config.hpp"
+#include "perception/region_growing.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace stairs {
+
+// For each segment that meets another at a concave corner (both planes in
+// front of each other, meeting within cfg.band_m of each other's plane): its
+// cells within cfg.band_m of the other plane form the band. Where the band lies
+// behind the plane fitted to the remaining cells by more than noise, that fit
+// replaces the segment's plane (a structured-light or stereo plane keeps its
+// fit); a segment with too few cells outside the band is marked `bent`.
+// Segments keep their cells. `in_band` is a grid-sized scratch buffer, reused.
+void fit_away_from_concave_corners(const NormalGrid& grid, const ConcaveCornersConfig& cfg,
+                                   std::vector<Segment>& segments, std::vector<uint8_t>& in_band);
+
+}  // namespace stairs
