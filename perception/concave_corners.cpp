@@ -2,15 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <utility>
 
 namespace stairs {
 
 namespace {
 
-struct Box {
-  Eigen::Vector3f lo, hi;
-};
+using Box = ConcaveCornersScratch::Box;
 
 // Signed distances of the box's corners to the plane (n, c): [min, max].
 std::pair<float, float> distance_range(const Box& b, const Eigen::Vector3f& n, const Eigen::Vector3f& c) {
@@ -32,17 +31,22 @@ Box box_of(const NormalGrid& g, const Segment& s) {
 }  // namespace
 
 void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConfig& cfg,
-                                   std::vector<Segment>& segments, std::vector<uint8_t>& in_band) {
+                                   std::vector<Segment>& segments, ConcaveCornersScratch& scratch) {
   if (cfg.band_m <= 0.0f || segments.size() < 2) return;
-  in_band.assign(static_cast<size_t>(g.width) * g.height, 0);
   const float d = cfg.band_m, cos_corner = std::cos(cfg.min_corner_angle_deg * static_cast<float>(M_PI) / 180.0f);
-  std::vector<Box> boxes;
-  boxes.reserve(segments.size());
+  std::vector<Box>& boxes = scratch.boxes;
+  boxes.clear();
   for (const Segment& s : segments) boxes.push_back(box_of(g, s));
-  Segment core;
+  std::vector<Eigen::Vector4f>& planes = scratch.planes;
+  planes.clear();
+  for (const Segment& s : segments) planes.emplace_back(s.normal.x(), s.normal.y(), s.normal.z(), -s.normal.dot(s.centroid));
+  std::vector<Eigen::Vector4f>& partners = scratch.partners;
+  // Decided on the planes as grown, applied after: a refit does not move another's band.
+  std::vector<std::pair<size_t, Segment>>& refits = scratch.refits;
+  refits.clear();
   for (size_t a = 0; a < segments.size(); ++a) {
     Segment& sa = segments[a];
-    int banded = 0;
+    partners.clear();
     for (size_t b = 0; b < segments.size(); ++b) {
       const Segment& sb = segments[b];
       if (a == b || std::abs(sa.normal.dot(sb.normal)) > cos_corner) continue;
@@ -54,12 +58,32 @@ void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConf
       const auto [alo, ahi] = distance_range(boxes[a], sb.normal, sb.centroid);
       const auto [blo, bhi] = distance_range(boxes[b], sa.normal, sa.centroid);
       if (alo > d || ahi < -d || blo > d || bhi < -d) continue;
-      for (int c : sa.cells)
-        if (!in_band[c] && std::abs(sb.normal.dot(g.points[c] - sb.centroid)) < d) in_band[c] = 1, ++banded;
+      partners.push_back(planes[b]);
     }
-    if (banded == 0) continue;
-    const size_t left = sa.cells.size() - static_cast<size_t>(banded);
-    if (left < 3 || static_cast<float>(left) < cfg.min_core_fraction * static_cast<float>(sa.cells.size())) {
+    if (partners.empty()) continue;
+    // The band: the cells within d of a partner's plane (the corner's line
+    // lies in it). Contiguous coordinates, one branch-free pass per partner.
+    const size_t n = sa.cells.size();
+    scratch.x.resize(n), scratch.y.resize(n), scratch.z.resize(n);
+    scratch.in_band.assign(n, 0);
+    float* x = scratch.x.data();
+    float* y = scratch.y.data();
+    float* z = scratch.z.data();
+    uint8_t* in = scratch.in_band.data();
+    for (size_t k = 0; k < n; ++k) {
+      const Eigen::Vector3f& p = g.points[sa.cells[k]];
+      x[k] = p.x(), y[k] = p.y(), z[k] = p.z();
+    }
+    for (const Eigen::Vector4f& q : partners) {
+      const float qx = q.x(), qy = q.y(), qz = q.z(), qw = q.w();
+      for (size_t k = 0; k < n; ++k) in[k] |= static_cast<uint8_t>(std::abs(qx * x[k] + qy * y[k] + qz * z[k] + qw) < d);
+    }
+    PlaneSums band;
+    for (size_t k = 0; k < n; ++k)
+      if (in[k]) band.add(Eigen::Vector3f(x[k], y[k], z[k]));
+    if (band.n == 0) continue;
+    const double left = sa.sums.n - band.n;
+    if (left < 3 || left < cfg.min_core_fraction * sa.sums.n) {
       sa.bent = true;
       continue;
     }
@@ -67,19 +91,20 @@ void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConf
     // behind the plane of the other cells by more than the noise of its mean,
     // and the plane without it is the flatter (cells straddling a clean
     // corner or nosing can tilt a small core's fit past the band instead).
-    core.cells.clear();
-    for (int c : sa.cells)
-      if (!in_band[c]) core.cells.push_back(c);
-    fit_segment(g, core);
-    double behind = 0.0;
-    for (int c : sa.cells)
-      if (in_band[c]) behind -= core.normal.dot(g.points[c] - core.centroid);
-    behind /= banded;
-    const double noise = cfg.behind_sigmas * core.rms_m / std::sqrt(static_cast<double>(banded));
+    Segment core;
+    fit_plane(sa.sums - band, core);
+    const Eigen::Vector3d band_mean = band.sum / band.n;
+    const double behind = -core.normal.cast<double>().dot(band_mean - core.centroid.cast<double>());
+    const double noise = cfg.behind_sigmas * core.rms_m / std::sqrt(band.n);
     if (core.rms_m >= sa.rms_m || behind < std::max(static_cast<double>(cfg.min_behind_m), noise)) continue;
-    std::swap(core.cells, sa.cells);
-    sa = core;
-    std::swap(core.cells, sa.cells);
+    refits.emplace_back(a, core);
+  }
+  for (const auto& [a, core] : refits) {
+    Segment& sa = segments[a];
+    sa.centroid = core.centroid;
+    sa.normal = core.normal;
+    sa.rms_m = core.rms_m;
+    for (int k = 0; k < 2; ++k) sa.axis[k] = core.axis[k], sa.spread_m2[k] = core.spread_m2[k];
   }
 }
 

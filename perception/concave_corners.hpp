@@ -11,6 +11,7 @@
 #include "perception/region_growing.hpp"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace stairs {
@@ -21,8 +22,19 @@ namespace stairs {
 // behind the plane fitted to the remaining cells by more than noise, that fit
 // replaces the segment's plane (a structured-light or stereo plane keeps its
 // fit); a segment with too few cells outside the band is marked `bent`.
-// Segments keep their cells. `in_band` is a grid-sized scratch buffer, reused.
+// Segments keep their cells and sums. One pass over each cornered segment's
+// cells; the plane without the band is the sums' difference.
+struct ConcaveCornersScratch {  // reused across frames
+  struct Box {
+    Eigen::Vector3f lo, hi;  // m, optical frame
+  };
+  std::vector<Box> boxes;                      // per segment
+  std::vector<Eigen::Vector4f> planes, partners;  // (normal, offset): n.p + w is the distance
+  std::vector<std::pair<size_t, Segment>> refits;
+  std::vector<float> x, y, z;    // one segment's cells, contiguous
+  std::vector<uint8_t> in_band;  // per cell of that segment
+};
 void fit_away_from_concave_corners(const NormalGrid& grid, const ConcaveCornersConfig& cfg,
-                                   std::vector<Segment>& segments, std::vector<uint8_t>& in_band);
+                                   std::vector<Segment>& segments, ConcaveCornersScratch& scratch);
 
 }  // namespace stairs

@@ -1,7 +1,6 @@
 #include "perception/pipeline.hpp"
 
 #include "perception/camera_height.hpp"
-#include "perception/concave_corners.hpp"
 #include "perception/edges_depth_jumps.hpp"
 #include "perception/edges_normal_image.hpp"
 #include "perception/gravity.hpp"
@@ -63,7 +62,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   clock.mark("normals");
   std::vector<Segment> segments = grow_regions(grid_, cfg_.region_growing, frame.K.width, frame.K.height, labels_);
   clock.mark("region_growing");
-  fit_away_from_concave_corners(grid_, cfg_.concave_corners, segments, in_band_);
+  fit_away_from_concave_corners(grid_, cfg_.concave_corners, segments, corners_);
   clock.mark("concave_corners");
   const int64_t gap_us = frame.utime - prior_utime_;
   if (gap_us < 0 || gap_us > cfg_.gravity.prior_max_gap_s * 1e6) up_prior_.reset();

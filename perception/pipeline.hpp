@@ -3,6 +3,7 @@
 #pragma once
 
 #include "common/types.hpp"
+#include "perception/concave_corners.hpp"
 #include "perception/config.hpp"
 #include "perception/imu_gravity.hpp"
 #include "perception/normals.hpp"
@@ -31,7 +32,7 @@ class Pipeline {
   PerceptionConfig cfg_;
   NormalGrid grid_;          // reused buffers
   std::vector<int> labels_;  // reused buffers
-  std::vector<uint8_t> in_band_;  // reused buffer of fit_away_from_concave_corners
+  ConcaveCornersScratch corners_;  // reused buffers
   std::optional<Eigen::Vector3f> up_prior_;  // optical frame, of the frame at prior_utime_
   int64_t prior_utime_ = 0;
   ImuGravity imu_;

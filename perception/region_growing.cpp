@@ -7,20 +7,11 @@
 
 namespace stairs {
 
-void fit_segment(const NormalGrid& g, Segment& s) {
-  // One pass of sums (double: the centred form's precision at a few metres).
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
-  for (int c : s.cells) {
-    const Eigen::Vector3d p = g.points[c].cast<double>();
-    sum += p;
-    xx += p.x() * p.x(), xy += p.x() * p.y(), xz += p.x() * p.z();
-    yy += p.y() * p.y(), yz += p.y() * p.z(), zz += p.z() * p.z();
-  }
-  const double inv_n = 1.0 / static_cast<double>(s.cells.size());
-  const Eigen::Vector3d mean = sum * inv_n;
+void fit_plane(const PlaneSums& m, Segment& s) {
+  const double inv_n = 1.0 / m.n;
+  const Eigen::Vector3d mean = m.sum * inv_n;
   Eigen::Matrix3d cov;
-  cov << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+  cov << m.xx, m.xy, m.xz, m.xy, m.yy, m.yz, m.xz, m.yz, m.zz;
   cov = cov * inv_n - mean * mean.transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
   es.computeDirect(cov);
@@ -33,6 +24,12 @@ void fit_segment(const NormalGrid& g, Segment& s) {
     s.axis[k] = es.eigenvectors().col(k + 1).cast<float>();
     s.spread_m2[k] = static_cast<float>(es.eigenvalues()(k + 1));
   }
+}
+
+void fit_segment(const NormalGrid& g, Segment& s) {
+  s.sums = PlaneSums{};
+  for (int c : s.cells) s.sums.add(g.points[c]);
+  fit_plane(s.sums, s);
 }
 
 std::vector<Segment> grow_regions(const NormalGrid& g, const RegionGrowingConfig& cfg, int image_width,

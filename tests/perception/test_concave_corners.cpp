@@ -57,8 +57,8 @@ Fitted fit(const DepthImage& img, float band_m) {
   std::vector<int> labels;
   Fitted f;
   f.segments = grow_regions(g, cfg.region_growing, img.K.width, img.K.height, labels);
-  std::vector<uint8_t> in_band;
-  fit_away_from_concave_corners(g, cfg.concave_corners, f.segments, in_band);
+  ConcaveCornersScratch scratch;
+  fit_away_from_concave_corners(g, cfg.concave_corners, f.segments, scratch);
   for (const Segment& s : f.segments)
     if (deg_from_up(s.normal) < 10) f.worst_tread_deg = std::max(f.worst_tread_deg, deg_from_up(s.normal));
   return f;
