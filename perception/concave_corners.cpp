@@ -83,20 +83,24 @@ void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConf
       if (in[k]) band.add(Eigen::Vector3f(x[k], y[k], z[k]));
     if (band.n == 0) continue;
     const double left = sa.sums.n - band.n;
-    if (left < 3 || left < cfg.min_core_fraction * sa.sums.n) {
-      sa.bent = true;
-      continue;
-    }
+    if (left < 3) continue;  // nothing to tell a bend by
     // Multipath only lengthens paths: the band bends the plane where it lies
-    // behind the plane of the other cells by more than the noise of its mean,
-    // and the plane without it is the flatter (cells straddling a clean
-    // corner or nosing can tilt a small core's fit past the band instead).
+    // behind the plane of the other cells by more than their scatter (not its
+    // standard error: neighbouring cells share their errors, structured
+    // light's quantisation steps and smoothing), and the plane without it is
+    // the flatter (cells straddling a clean corner or nosing can tilt a small
+    // core's fit past the band instead).
     Segment core;
     fit_plane(sa.sums - band, core);
     const Eigen::Vector3d band_mean = band.sum / band.n;
     const double behind = -core.normal.cast<double>().dot(band_mean - core.centroid.cast<double>());
-    const double noise = cfg.behind_sigmas * core.rms_m / std::sqrt(band.n);
+    const double noise = cfg.behind_rms * core.rms_m;
     if (core.rms_m >= sa.rms_m || behind < std::max(static_cast<double>(cfg.min_behind_m), noise)) continue;
+    // Bent, and too little of it outside the bands to stand for its plane.
+    if (left < cfg.min_core_fraction * sa.sums.n) {
+      sa.bent = true;
+      continue;
+    }
     refits.emplace_back(a, core);
   }
   for (const auto& [a, core] : refits) {

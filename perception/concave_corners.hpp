@@ -19,9 +19,10 @@ namespace stairs {
 // For each segment that meets another at a concave corner (both planes in
 // front of each other, meeting within cfg.band_m of each other's plane): its
 // cells within cfg.band_m of the other plane form the band. Where the band lies
-// behind the plane fitted to the remaining cells by more than noise, that fit
-// replaces the segment's plane (a structured-light or stereo plane keeps its
-// fit); a segment with too few cells outside the band is marked `bent`.
+// behind the plane fitted to the remaining cells by more than their scatter,
+// and that plane is the flatter, it replaces the segment's plane (a
+// structured-light or stereo plane keeps its fit); such a segment with too few
+// cells outside its bands is marked `bent` instead.
 // Segments keep their cells and sums. One pass over each cornered segment's
 // cells; the plane without the band is the sums' difference.
 struct ConcaveCornersScratch {  // reused across frames

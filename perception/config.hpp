@@ -174,16 +174,17 @@ struct ConcaveCornersConfig {
   float band_m = 0.08f;                // m; a corner's band: multipath bias falls off over about this (0 = off)
   float min_corner_angle_deg = 45.0f;  // deg; planes meeting at least this steeply form a corner
   float min_behind_m = 0.002f;         // m; band mean behind the rest of the plane that counts as bent
-                                       // (above structured-light quantisation in a cell's mean)
-  float behind_sigmas = 3.0f;          // and above this many standard errors of the band's mean
-  float min_core_fraction = 0.3f;      // a plane with less outside its bands is marked bent: not used for gravity
+  float behind_rms = 1.5f;             // and more than this many times the rest's rms residual (Kinect v2
+                                       // multipath: 2.6-6.4; structured light at 3 m: 0.8-1.0)
+  float min_core_fraction = 0.3f;      // a bent plane with less outside its bands is marked bent: not used
+                                       // for gravity
 
   template <class V>
   void visit(V& v) {
     v("band_m", band_m, 0.0f, 1.0f);
     v("min_corner_angle_deg", min_corner_angle_deg, 0.0f, 90.0f);
     v("min_behind_m", min_behind_m, 0.0f, 0.1f);
-    v("behind_sigmas", behind_sigmas, 0.0f, 100.0f);
+    v("behind_rms", behind_rms, 0.0f, 100.0f);
     v("min_core_fraction", min_core_fraction, 0.0f, 1.0f);
   }
 };

@@ -39,8 +39,8 @@ struct Segment {
   Eigen::Vector3f axis[2] = {Eigen::Vector3f::UnitX(), Eigen::Vector3f::UnitY()};
   float spread_m2[2] = {0.0f, 0.0f};
   PlaneSums sums;  // of all its cells
-  bool bent = false;  // mostly inside concave corners' bands: its fit may be bent, and nothing is left
-                      // to check it against (concave_corners.hpp); gravity does not use it
+  bool bent = false;  // bent by a concave corner's band, with too little outside it to stand for its
+                      // plane (concave_corners.hpp); gravity does not use it
 };
 
 // Least-squares plane of the segment's cells (sums, centroid, normal, rms, axes).
