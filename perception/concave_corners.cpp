@@ -30,8 +30,8 @@ Box box_of(const NormalGrid& g, const Segment& s) {
 
 }  // namespace
 
-void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConfig& cfg,
-                                   std::vector<Segment>& segments, ConcaveCornersScratch& scratch) {
+void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConfig& cfg, std::vector<Segment>& segments,
+                                   ConcaveCornersScratch& scratch) {
   if (cfg.band_m <= 0.0f || segments.size() < 2) return;
   const float d = cfg.band_m, cos_corner = std::cos(cfg.min_corner_angle_deg * static_cast<float>(M_PI) / 180.0f);
   std::vector<Box>& boxes = scratch.boxes;
@@ -39,7 +39,8 @@ void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConf
   for (const Segment& s : segments) boxes.push_back(box_of(g, s));
   std::vector<Eigen::Vector4f>& planes = scratch.planes;
   planes.clear();
-  for (const Segment& s : segments) planes.emplace_back(s.normal.x(), s.normal.y(), s.normal.z(), -s.normal.dot(s.centroid));
+  for (const Segment& s : segments)
+    planes.emplace_back(s.normal.x(), s.normal.y(), s.normal.z(), -s.normal.dot(s.centroid));
   std::vector<Eigen::Vector4f>& partners = scratch.partners;
   // Decided on the planes as grown, applied after: a refit does not move another's band.
   std::vector<std::pair<size_t, Segment>>& refits = scratch.refits;
@@ -76,7 +77,8 @@ void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConf
     }
     for (const Eigen::Vector4f& q : partners) {
       const float qx = q.x(), qy = q.y(), qz = q.z(), qw = q.w();
-      for (size_t k = 0; k < n; ++k) in[k] |= static_cast<uint8_t>(std::abs(qx * x[k] + qy * y[k] + qz * z[k] + qw) < d);
+      for (size_t k = 0; k < n; ++k)
+        in[k] |= static_cast<uint8_t>(std::abs(qx * x[k] + qy * y[k] + qz * z[k] + qw) < d);
     }
     PlaneSums band;
     for (size_t k = 0; k < n; ++k)

@@ -33,7 +33,8 @@ DepthImage stairs_with_multipath(double bias_m, double band_m) {
       const int k = static_cast<int>(std::lround(level));
       if (std::abs(level - k) > 0.02 || k > 2) continue;
       const double to_corner = kFirstRiser + k * kTread - p.x();
-      if (to_corner >= 0 && to_corner < band_m) mm = static_cast<uint16_t>(std::lround(mm + 1000 * bias_m * (1 - to_corner / band_m)));
+      if (to_corner >= 0 && to_corner < band_m)
+        mm = static_cast<uint16_t>(std::lround(mm + 1000 * bias_m * (1 - to_corner / band_m)));
     }
   return img;
 }
@@ -42,7 +43,9 @@ Eigen::Vector3f true_up() {
   return (test::optical_to_world(kPitch, 0).transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
 }
 
-double deg_from_up(const Eigen::Vector3f& n) { return std::acos(std::min(1.0f, std::abs(n.dot(true_up())))) * 180 / M_PI; }
+double deg_from_up(const Eigen::Vector3f& n) {
+  return std::acos(std::min(1.0f, std::abs(n.dot(true_up())))) * 180 / M_PI;
+}
 
 struct Fitted {
   std::vector<Segment> segments;
