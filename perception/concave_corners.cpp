@@ -37,10 +37,6 @@ void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConf
   std::vector<Box>& boxes = scratch.boxes;
   boxes.clear();
   for (const Segment& s : segments) boxes.push_back(box_of(g, s));
-  std::vector<Eigen::Vector4f>& planes = scratch.planes;
-  planes.clear();
-  for (const Segment& s : segments)
-    planes.emplace_back(s.normal.x(), s.normal.y(), s.normal.z(), -s.normal.dot(s.centroid));
   std::vector<Eigen::Vector4f>& partners = scratch.partners;
   // Decided on the planes as grown, applied after: a refit does not move another's band.
   std::vector<std::pair<size_t, Segment>>& refits = scratch.refits;
@@ -59,7 +55,7 @@ void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConf
       const auto [alo, ahi] = distance_range(boxes[a], sb.normal, sb.centroid);
       const auto [blo, bhi] = distance_range(boxes[b], sa.normal, sa.centroid);
       if (alo > d || ahi < -d || blo > d || bhi < -d) continue;
-      partners.push_back(planes[b]);
+      partners.emplace_back(sb.normal.x(), sb.normal.y(), sb.normal.z(), -sb.normal.dot(sb.centroid));
     }
     if (partners.empty()) continue;
     // The band: the cells within d of a partner's plane (the corner's line

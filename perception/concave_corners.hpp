@@ -30,7 +30,7 @@ struct ConcaveCornersScratch {  // reused across frames
     Eigen::Vector3f lo, hi;  // m, optical frame
   };
   std::vector<Box> boxes;                      // per segment
-  std::vector<Eigen::Vector4f> planes, partners;  // (normal, offset): n.p + w is the distance
+  std::vector<Eigen::Vector4f> partners;  // planes as (normal, offset): n.p + w is the distance
   std::vector<std::pair<size_t, Segment>> refits;
   std::vector<float> x, y, z;    // one segment's cells, contiguous
   std::vector<uint8_t> in_band;  // per cell of that segment
