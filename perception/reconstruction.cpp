@@ -69,6 +69,10 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
     steps.insert(steps.begin(), s);
   }
   const Level& top = chain.levels.back();
+  // A flight ends at a landing: a riser beyond one starts the next flight, and
+  // with its top cut by the view nothing shows a step there (a landing's back
+  // wall looks the same). It is a step once its top is seen.
+  const bool top_is_landing = top.plane >= 0 && top.s_max - top.s_min > cfg.landing_min_depth_m;
   // The next riser stands at the top level's far end; when that level is a
   // riser's top (a tread seen edge-on from a low camera) its far end is
   // unseen: the riser stands a plausible tread beyond.
@@ -82,8 +86,11 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
     const PlaneExtent& e = ps.extents[r];
     const double seen = e.z_max - top.z;
     // A riser whose top is in view is measured; one that rises beyond DIN's
-    // bounds is no step's (a wall, a cabinet). A cut one's height is the median, flagged.
-    if (e.top_in_view && !din_riser_ok(seen, cfg)) return;
+    // bounds is no step's (a wall, a cabinet), and neither is one cut by the view
+    // whose seen part alone is taller than any riser (a landing's back wall).
+    // A cut one's height is the median, flagged.
+    if (e.top_in_view ? !din_riser_ok(seen, cfg) : top_is_landing || seen > cfg.riser_max_m * (1 + cfg.din_tolerance))
+      return;
     Step s;
     s.riser_plane = r;
     s.riser_height_m = e.top_in_view ? seen : median;

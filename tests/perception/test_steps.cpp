@@ -248,6 +248,43 @@ TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
   EXPECT_EQ(steps.size(), 2u);
 }
 
+// A landing ends a flight: a surface rising at its far end with its top cut by
+// the view is a back wall as much as the next flight's first riser, so nothing
+// shows a step there until its top is seen. Nor is a cut surface a riser when
+// its seen part alone is taller than any riser.
+TEST(PerceptionReconstruction, ACutRiserBeyondALandingOrTallerThanAnyRiserIsNoStep) {
+  const StairConfig cfg;
+  // Floor, one tread, then a 1.5 m landing with a surface rising at its far end.
+  PlaneSet ps = three_levels(0.3f, 1.0f, -1.0f);
+  ps.extents[2].s_max = 2.75f;
+  PlaneExtent wall{2.75f, 2.75f, -0.5f, 0.5f, -0.64f, -0.55f, 2.75f, -0.6f};
+  wall.top_in_view = false;
+  add_plane(ps, PlaneKind::Riser, wall);
+  StairChain chain = best_chain(tread_levels(ps, {}, cfg), cfg);
+  ASSERT_EQ(chain.direction, Direction::Up);
+  std::vector<Step> steps = steps_from_chain(ps, chain, cfg);
+  ASSERT_EQ(steps.size(), 2u);
+  reconstruct(ps, chain, steps, cfg);
+  EXPECT_EQ(steps.size(), 2u) << "a cut surface beyond a landing made a step";
+  // Its top in view at a plausible rise: the next flight's first step, measured.
+  ps.extents[5].top_in_view = true;
+  ps.extents[5].z_max = -0.64f + 0.17f;
+  steps = steps_from_chain(ps, chain, cfg);
+  reconstruct(ps, chain, steps, cfg);
+  ASSERT_EQ(steps.size(), 3u);
+  EXPECT_NEAR(*steps[2].riser_height_m, 0.17, 1e-4);
+
+  // A tread (no landing) with a cut surface whose seen part rises 0.4 m: a wall.
+  ps = three_levels(0.3f, 1.0f, -1.0f);
+  PlaneExtent tall{1.5f, 1.5f, -0.5f, 0.5f, -0.64f, -0.24f, 1.5f, -0.44f};
+  tall.top_in_view = false;
+  add_plane(ps, PlaneKind::Riser, tall);
+  chain = best_chain(tread_levels(ps, {}, cfg), cfg);
+  steps = steps_from_chain(ps, chain, cfg);
+  reconstruct(ps, chain, steps, cfg);
+  EXPECT_EQ(steps.size(), 2u) << "a cut surface taller than any riser made a step";
+}
+
 TEST(PerceptionReconstruction, ASliverOfRiserCutByTheBottomOfTheViewMakesTheFirstLevelAStep) {
   // Looking down a flight from above it: three treads, the risers between
   // them, and under the first tread's front edge 4 cm of its riser before the
