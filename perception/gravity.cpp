@@ -37,6 +37,15 @@ std::optional<Family> best_family(const std::vector<Segment>& segments, float co
   return Family{best.normalized(), best_support};
 }
 
+// How well a plane's fit knows its normal in its worst direction: cells x the
+// spread across its narrower in-plane axis / rms^2 (the inverse variance of a
+// least-squares normal's tilt). A thin strip or a riser cut at a nosing knows
+// its normal poorly however many cells it has.
+double information(const Segment& s, const GravityConfig& cfg) {
+  const double rms = std::max(s.rms_m, cfg.fit_rms_floor_m);
+  return static_cast<double>(s.cells.size()) * std::min(s.spread_m2[0], s.spread_m2[1]) / (rms * rms);
+}
+
 // The up that the horizontal planes within tol_deg of `up` fit best: up is
 // perpendicular to each plane's in-plane axes, each constraint weighted by how
 // well the plane's fit knows it. A normal's tilt towards an in-plane axis has
@@ -88,19 +97,19 @@ Eigen::Vector3f consensus_up(const std::vector<Segment>& segments, const Eigen::
   const float sin_agree = std::sin(cfg.consensus_deg * static_cast<float>(M_PI) / 180.0f);
   const float cos_agree = std::sqrt(1.0f - sin_agree * sin_agree);
   auto score = [&](const Eigen::Vector3f& u) {
-    float sc = 0.0f;
+    double sc = 0.0;
     for (const Segment& s : segments) {
       if (s.bent) continue;
       const float c = std::abs(s.normal.dot(u));
-      if (c >= cos_agree || c <= sin_agree) sc += static_cast<float>(s.cells.size());
+      if (c >= cos_agree || c <= sin_agree) sc += information(s, cfg);
     }
     return sc;
   };
   Eigen::Vector3f best = family_up;
-  float best_score = score(family_up);
+  double best_score = score(family_up);
   for (const Segment& c : segments) {
     if (c.bent || !candidate(c.normal)) continue;
-    const float sc = score(c.normal);
+    const double sc = score(c.normal);
     if (sc > best_score) best_score = sc, best = c.normal;
   }
   // Fitted to the horizontal segments that agree with it, starting from their
@@ -109,7 +118,7 @@ Eigen::Vector3f consensus_up(const std::vector<Segment>& segments, const Eigen::
   Eigen::Vector3f sum = Eigen::Vector3f::Zero();
   for (const Segment& s : segments)
     if (!s.bent && s.normal.dot(best) >= cos_agree) sum += static_cast<float>(s.cells.size()) * s.normal;
-  return refine(segments, sum.normalized(), cfg);
+  return refine(segments, sum.squaredNorm() > 0.0f ? sum.normalized() : best, cfg);
 }
 
 }  // namespace
@@ -153,10 +162,12 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   if (up.dot(*prior) < 0) up = -up;
   up.normalize();
   if (up.dot(*prior) < cos_prior) return std::nullopt;
-  // Walls and risers choose; treads too small to choose still fit it where
-  // they agree (a level camera's far treads and floor: walls and risers, noisy
-  // at 3 m, set it off by a degree or two).
-  return refine(segments, up, cfg);
+  // Walls and risers propose; a tread too small to outweigh them may still be
+  // the up more planes agree with (risers' normals are bent at both of their
+  // edges, and a wall says nothing of pitch along it), and treads then fit it
+  // where they agree (a level camera's far treads and floor: walls and risers,
+  // noisy at 3 m, set it off by a degree or two).
+  return consensus_up(segments, up, cfg, near_up);
 }
 
 CameraPose pose_from_up(const Eigen::Vector3f& up_optical) {
