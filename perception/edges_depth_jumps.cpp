@@ -245,6 +245,7 @@ std::vector<JumpEdge> depth_jump_edges(const NormalGrid& g, const DepthImage& fr
       e.z = zs[mid];
       e.t_min = *lo;
       e.t_max = *hi;
+      e.across = dir.head<2>().normalized();
       const JumpPoint& a = pts[line[static_cast<size_t>(lo - ts.begin())]];
       const JumpPoint& b = pts[line[static_cast<size_t>(hi - ts.begin())]];
       e.edge.type = EdgeType::Convex;
@@ -259,6 +260,19 @@ std::vector<JumpEdge> depth_jump_edges(const NormalGrid& g, const DepthImage& fr
   }
   std::sort(edges.begin(), edges.end(), [](const JumpEdge& a, const JumpEdge& b) { return a.z > b.z; });
   return edges;
+}
+
+std::optional<float> axis_from_edges(const std::vector<JumpEdge>& edges) {
+  Eigen::Vector2f doubled = Eigen::Vector2f::Zero();
+  for (const JumpEdge& e : edges) {
+    // The axis is the line's direction turned a quarter, pointing away from the camera.
+    Eigen::Vector2f a(e.across.y(), -e.across.x());
+    if (a.x() < 0) a = -a;
+    const float w = static_cast<float>(e.edge.support);
+    doubled += w * Eigen::Vector2f(a.x() * a.x() - a.y() * a.y(), 2 * a.x() * a.y());
+  }
+  if (doubled.squaredNorm() == 0.0f) return std::nullopt;
+  return 0.5f * std::atan2(doubled.y(), doubled.x());
 }
 
 }  // namespace stairs

@@ -7,6 +7,7 @@
 #include "perception/normals.hpp"
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 namespace stairs {
@@ -17,6 +18,7 @@ namespace stairs {
 struct JumpEdge {
   float s = 0, z = 0, t_min = 0, t_max = 0;  // of the near cells' mean points
   float nosing_s = 0;  // the edge itself along the axis: the near cells placed at the jump's pixel row
+  Eigen::Vector2f across = Eigen::Vector2f::UnitY();  // the fitted line's horizontal direction (unit, either sign)
   Edge edge;  // the observation's edge (source DepthJump, type Convex)
 };
 
@@ -25,5 +27,10 @@ struct JumpEdge {
 // jump's pixel rows in `frame` (the depth the grid was made of). Highest first.
 std::vector<JumpEdge> depth_jump_edges(const NormalGrid& grid, const DepthImage& frame, const Eigen::Matrix3f& gravity,
                                        float yaw_rad, const DepthJumpEdgesConfig& cfg, float min_length_m);
+
+// The stair axis (yaw from camera forward, rad) perpendicular to the edges' lines, their support
+// weighting the doubled angles (a line's direction has no sign); none without edges. Looking down a
+// flight its risers are hidden and the nosings are the only lines across it.
+std::optional<float> axis_from_edges(const std::vector<JumpEdge>& edges);
 
 }  // namespace stairs

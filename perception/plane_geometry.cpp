@@ -132,6 +132,7 @@ std::vector<Group> histogram_merge(std::vector<Group> items, float bin) {
 struct Classified {
   std::vector<Group> horizontal, vertical, other;
   float yaw_rad = 0.0f;
+  bool axis_from_risers = false;
 };
 
 Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f& R, const PlaneGeometryConfig& cfg) {
@@ -156,7 +157,8 @@ Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f&
       out.other.push_back(std::move(grp));
     }
   }
-  out.yaw_rad = axis.squaredNorm() > 0 ? std::atan2(axis.y(), axis.x()) : 0.0f;
+  out.axis_from_risers = axis.squaredNorm() > 0;
+  out.yaw_rad = out.axis_from_risers ? std::atan2(axis.y(), axis.x()) : 0.0f;
   return out;
 }
 
@@ -244,10 +246,12 @@ PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Ei
 }  // namespace
 
 PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segments, const Eigen::Matrix3f& R,
-                        const PlaneGeometryConfig& cfg, const OutputConfig& caps) {
+                        const PlaneGeometryConfig& cfg, const OutputConfig& caps, std::optional<float> axis_yaw_rad) {
   Classified classified = classify(segments, R, cfg);
+  if (axis_yaw_rad) classified.yaw_rad = *axis_yaw_rad, classified.axis_from_risers = false;
   PlaneSet out;
   out.yaw_rad = classified.yaw_rad;
+  out.axis_from_risers = classified.axis_from_risers;
   ExtentScratch scratch;
   std::vector<int> cells;
   for (const Group& grp : merge(std::move(classified), segments, R, cfg, caps.max_planes)) {

@@ -5,6 +5,7 @@
 #include "perception/region_growing.hpp"
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace stairs {
@@ -22,6 +23,7 @@ struct PlaneSet {
   std::vector<Plane> planes;        // gravity-aligned camera frame
   std::vector<PlaneExtent> extents;  // same order
   float yaw_rad = 0;                 // stair axis relative to camera forward
+  bool axis_from_risers = false;     // yaw_rad from vertical planes facing the camera (else given, or 0)
   // Stair-aligned (s, t, z) -> gravity-aligned camera frame.
   Eigen::Vector3f to_camera(float s, float t, float z) const;
   // Gravity-aligned camera frame -> position along the stair axis (s).
@@ -33,9 +35,11 @@ struct PlaneSet {
 // Merges the segments (optical frame) rotated by `gravity` (optical ->
 // gravity-aligned) into planes: horizontal ones binned by height, vertical
 // ones by depth along their normal, one cross-bin merge per plane; at most
-// caps.max_planes, with point samples of at most caps.max_*_points.
+// caps.max_planes, with point samples of at most caps.max_*_points. The stair axis is the one
+// `axis_yaw_rad` gives, else from the vertical planes facing the camera (risers), else forward.
 PlaneSet plane_geometry(const NormalGrid& grid, const std::vector<Segment>& segments,
-                        const Eigen::Matrix3f& gravity, const PlaneGeometryConfig& cfg, const OutputConfig& caps);
+                        const Eigen::Matrix3f& gravity, const PlaneGeometryConfig& cfg, const OutputConfig& caps,
+                        std::optional<float> axis_yaw_rad = std::nullopt);
 
 // The one riser search of steps and reconstruction: the segmented riser whose
 // face (s_mean) lies within [s_lo, s_hi] and whose extent satisfies `fits`,

@@ -78,7 +78,16 @@ INSTANTIATE_TEST_SUITE_P(Sim, SensorAccuracy,
                              Walk{"irregular_step_kinect2", "--preset irregular_step --sensor kinect2"},
                              Walk{"irregular_step_d435", "--preset irregular_step --sensor d435"},
                              Walk{"steep_nosing_up_d435", "--preset steep_nosing --sensor d435"},
-                             Walk{"up_robot_kinect2", "--preset straight_up --carrier robot --sensor kinect2"}),
+                             Walk{"up_robot_kinect2", "--preset straight_up --carrier robot --sensor kinect2"},
+                             // Walking down turned 12 deg from the flight, 0.2 m off its centre line: the
+                             // risers are hidden, so the nosings' lines give the stair axis (without them
+                             // treads came out 0.9-1.1 cm short and Kinect v1 kept a false model step).
+                             Walk{"yawed_down_kinect1",
+                                  "--preset straight_down --yaw 12 --lateral -0.2 --sensor kinect1"},
+                             Walk{"yawed_down_kinect2",
+                                  "--preset straight_down --yaw 12 --lateral -0.2 --sensor kinect2"},
+                             Walk{"yawed_down_d435",
+                                  "--preset straight_down --yaw 12 --lateral -0.2 --sensor d435"}),
                          kName);
 
 // Not met yet (measured 2026-12-03, floors unchanged; ctest lists it as

@@ -221,7 +221,8 @@ TEST(PerceptionGravity, AWellFittedTreadOutvotesRisersBentAtTheirNosings) {
     s.cells.assign(cells, 0);
     const Eigen::Vector3f a0 = s.normal.unitOrthogonal();
     s.axis[0] = a0, s.axis[1] = s.normal.cross(a0).normalized();
-    s.spread_m2[0] = static_cast<float>(spread0_m * spread0_m), s.spread_m2[1] = static_cast<float>(spread1_m * spread1_m);
+    s.spread_m2[0] = static_cast<float>(spread0_m * spread0_m);
+    s.spread_m2[1] = static_cast<float>(spread1_m * spread1_m);
     s.rms_m = rms_m;
     return s;
   };
