@@ -58,12 +58,15 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
     s.riser_plane = r;
     s.tread_plane = base.plane;
     // Measured from the surface at the riser's foot (too low a rise for the
-    // grammar: the floor under a short first riser), else from the riser itself
-    // where its foot is in view; otherwise the median is a prior, flagged.
+    // grammar: the floor under a short first riser), else from the riser's foot
+    // where it is in view up to the level on top (not to the riser's own top:
+    // under a nosing overhang that is the slab's underside, a slab's thickness
+    // low); otherwise the median is a prior, flagged.
     const PlaneExtent& e = ps.extents[r];
     const int floor = level_at_foot(ps, e, contact);
-    s.riser_height_m = floor >= 0 ? base.z - ps.extents[floor].z_mean : e.bottom_in_view ? e.z_max - e.z_min : median;
-    if (floor < 0 && !e.bottom_in_view) s.inferred |= kStepRiserInferred;
+    s.riser_height_m = floor >= 0 ? base.z - ps.extents[floor].z_mean : e.bottom_in_view ? base.z - e.z_min : median;
+    // A level that is a riser's top (its tread seen from below, or edge-on) is no measured height.
+    if ((floor < 0 && !e.bottom_in_view) || base.riser_top) s.inferred |= kStepRiserInferred;
     s.nosing_m = ps.to_camera(base.s_min, 0.5f * (base.t_min + base.t_max), base.z).cast<double>();
     s.width_m = base.t_max - base.t_min;
     steps.insert(steps.begin(), s);
@@ -94,7 +97,9 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
     Step s;
     s.riser_plane = r;
     s.riser_height_m = e.top_in_view ? seen : median;
-    if (!e.top_in_view) s.inferred |= kStepRiserInferred | kStepNosingInferred;
+    // With no tread seen above it, a riser's top is no measured level either
+    // (under a nosing overhang it is the slab's underside): the rise is flagged.
+    s.inferred |= e.top_in_view ? kStepRiserInferred : kStepRiserInferred | kStepNosingInferred;
     s.nosing_m = ps.to_camera(e.s_mean, 0.5f * (e.t_min + e.t_max), top.z + static_cast<float>(*s.riser_height_m))
                      .cast<double>();
     s.width_m = e.t_max - e.t_min;

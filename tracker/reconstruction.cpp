@@ -28,7 +28,7 @@ int reconstruct_occluded_steps(StairMap& map, const ModelReconstructionConfig& c
       MapStep s;
       const double f = static_cast<double>(k) / n;
       s.nosing_x_m.add(a.x() + f * dx, 1);
-      s.tread_z_m.add(a.z() + f * dz, 1);
+      s.edge_z_m.add(a.z() + f * dz, 1);  // interpolated: a seen tread plane overrides it
       if (a.y_min_m.known()) s.y_min_m.add(a.y_min_m.value, 1);
       if (a.y_max_m.known()) s.y_max_m.add(a.y_max_m.value, 1);
       s.reconstructed = true;

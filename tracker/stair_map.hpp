@@ -27,6 +27,8 @@ struct MapStep {
   RunningMean riser_x_m;       // riser plane position along x
   RunningMean nosing_x_m;      // nosing edge position along x (where no riser was seen)
   RunningMean tread_z_m;       // tread plane height
+  RunningMean edge_z_m;        // nosing height where no tread plane was seen: a depth jump, or a riser's top
+                               // (under a nosing overhang the slab's underside, a slab's thickness low)
   RunningMean riser_height_m;  // as perception measured it (first step, gaps)
   RunningMean y_min_m, y_max_m;  // lateral bounding box
   double tread_far_x_m = -1e9;   // farthest observed back edge of the tread
@@ -36,7 +38,7 @@ struct MapStep {
   int riser_points_seen = 0, tread_points_seen = 0;          // for the cyclic cap
 
   double x() const { return riser_x_m.known() ? riser_x_m.value : nosing_x_m.value; }
-  double z() const { return tread_z_m.value; }
+  double z() const { return tread_z_m.known() ? tread_z_m.value : edge_z_m.value; }
 };
 
 struct StairMap {

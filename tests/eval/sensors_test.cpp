@@ -92,7 +92,7 @@ INSTANTIATE_TEST_SUITE_P(Sim, SensorAccuracy,
 
 // Not met yet (measured 2026-12-03, floors unchanged; ctest lists it as
 // "Not Run (Disabled)"):
-// - dark_treads, kinect2: the model holds 10 of 10 steps (riser 0.21 cm, tread 0.09 cm), but 3
+// - dark_treads, kinect2: the model holds 10 of 10 steps (riser 0.36 cm, tread 0.10 cm), but 3
 //   frames show a false step. With the treads dark no tread is segmented, so the risers' concave
 //   corners with them are not found (perception/concave_corners.hpp needs both planes) and the
 //   multipath band bends the risers: up from walls and risers is 1-2 deg off, and a tread missing

@@ -3,6 +3,8 @@
 // tread errors under 1 cm and no false steps, at slow and walking speed, with
 // dropped frames and gaps, ascending, descending and over two flights.
 #include "drivers/sim/synthetic_observations.hpp"
+#include "tracker/config.hpp"
+#include "tracker/merge.hpp"
 #include "tracker/model_output.hpp"
 #include "tracker/tracker.hpp"
 
@@ -112,6 +114,28 @@ TEST(Tracker, CameraOnTheStair) {
     ++checked;
   }
   EXPECT_GT(checked, 20);
+}
+
+// A tread's plane measures its height; a nosing seen without one (a riser's top,
+// under a nosing overhang the slab's underside 5 cm low) only stands in until a
+// plane is seen, however often it is seen after.
+TEST(TrackerMerge, ATreadPlaneSetsAStepsHeightOverItsEdges) {
+  StairMap map;
+  const Pose4 pose;
+  const TrackerConfig c;
+  ObservedStep edge;
+  edge.nosing_m = {1.0, 0.0, 0.13};
+  ObservedStep plane;
+  plane.nosing_m = {1.0, 0.0, 0.18};
+  plane.tread_z_m = 0.18;
+  merge(map, {edge}, pose, c.merge, c.stair, c.registration.icp_min_distance_m);
+  ASSERT_EQ(map.steps.size(), 1u);
+  EXPECT_NEAR(map.steps[0].z(), 0.13, 1e-9);
+  merge(map, {plane}, pose, c.merge, c.stair, c.registration.icp_min_distance_m);
+  for (int k = 0; k < 5; ++k) merge(map, {edge}, pose, c.merge, c.stair, c.registration.icp_min_distance_m);
+  ASSERT_EQ(map.steps.size(), 1u);
+  EXPECT_NEAR(map.steps[0].z(), 0.18, 1e-9);
+  EXPECT_EQ(map.steps[0].confirmations, 7);
 }
 
 TEST(Tracker, StepsCountConfirmations) {
