@@ -265,14 +265,13 @@ std::vector<JumpEdge> depth_jump_edges(const NormalGrid& g, const DepthImage& fr
 std::optional<float> axis_from_edges(const std::vector<JumpEdge>& edges) {
   Eigen::Vector2f doubled = Eigen::Vector2f::Zero();
   for (const JumpEdge& e : edges) {
-    // The axis is the line's direction turned a quarter, pointing away from the camera.
-    Eigen::Vector2f a(e.across.y(), -e.across.x());
-    if (a.x() < 0) a = -a;
+    // The axis is the line's direction turned a quarter; doubled, its sign drops out.
+    const Eigen::Vector2f a(e.across.y(), -e.across.x());
     const float w = static_cast<float>(e.edge.support);
     doubled += w * Eigen::Vector2f(a.x() * a.x() - a.y() * a.y(), 2 * a.x() * a.y());
   }
   if (doubled.squaredNorm() == 0.0f) return std::nullopt;
-  return 0.5f * std::atan2(doubled.y(), doubled.x());
+  return 0.5f * std::atan2(doubled.y(), doubled.x());  // within 90 deg of forward: away from the camera
 }
 
 }  // namespace stairs

@@ -77,5 +77,20 @@ TEST(PerceptionEdgesDepthJumps, NosingsOfADescendingFlight) {
   EXPECT_LT(row_err_m, 0.6 * cell_err_m);
 }
 
+// Looking down a flight turned 12 deg from it: the nosings' lines, either sign,
+// give the stair axis 12 deg from forward, weighted by their support.
+TEST(PerceptionEdgesDepthJumps, TheNosingsLinesGiveTheStairAxis) {
+  const float turn = 12.0f * static_cast<float>(M_PI) / 180.0f;
+  std::vector<JumpEdge> edges(3);
+  edges[0].across = {-std::sin(turn), std::cos(turn)};
+  edges[1].across = {std::sin(turn), -std::cos(turn)};
+  edges[2].across = {0.0f, 1.0f};  // a short line across forward, little support
+  edges[0].edge.support = 200, edges[1].edge.support = 200, edges[2].edge.support = 1;
+  const std::optional<float> axis = axis_from_edges(edges);
+  ASSERT_TRUE(axis.has_value());
+  EXPECT_NEAR(*axis, turn, 0.002f);
+  EXPECT_FALSE(axis_from_edges({}).has_value());
+}
+
 }  // namespace
 }  // namespace stairs
