@@ -37,20 +37,24 @@ std::optional<Family> best_family(const std::vector<Segment>& segments, float co
   return Family{best.normalized(), best_support};
 }
 
-// How well a plane's fit knows its normal in its worst direction: cells x the
-// spread across its narrower in-plane axis / rms^2 (the inverse variance of a
-// least-squares normal's tilt). A thin strip or a riser cut at a nosing knows
-// its normal poorly however many cells it has.
-double information(const Segment& s, const GravityConfig& cfg) {
+// A least-squares plane's normal tilts towards an in-plane axis with variance
+// rms^2 / (cells * spread along that axis): its inverse is this times the spread.
+double information_per_spread(const Segment& s, const GravityConfig& cfg) {
   const double rms = std::max(s.rms_m, cfg.fit_rms_floor_m);
-  return static_cast<double>(s.cells.size()) * std::min(s.spread_m2[0], s.spread_m2[1]) / (rms * rms);
+  return static_cast<double>(s.cells.size()) / (rms * rms);
+}
+
+// How well a plane's fit knows its normal in its worst direction (across its
+// narrower in-plane axis). A thin strip or a riser cut at a nosing knows its
+// normal poorly however many cells it has.
+double information(const Segment& s, const GravityConfig& cfg) {
+  return information_per_spread(s, cfg) * std::min(s.spread_m2[0], s.spread_m2[1]);
 }
 
 // The up that the horizontal planes within tol_deg of `up` fit best: up is
 // perpendicular to each plane's in-plane axes, each constraint weighted by how
-// well the plane's fit knows it. A normal's tilt towards an in-plane axis has
-// variance rms^2 / (cells * spread along that axis) (a least-squares plane; a
-// thin strip's tilt across it is poorly known, a large flat floor's well).
+// well the plane's fit knows it (information_per_spread: a thin strip's tilt
+// across it is poorly known, a large flat floor's well).
 // Directions the planes constrain less than cfg.refine_prior_fraction of their
 // total keep `up`. Without planes near it, `up` itself.
 Eigen::Vector3f fit_up(const std::vector<Segment>& segments, const Eigen::Vector3f& up, float tol_deg,
@@ -60,8 +64,7 @@ Eigen::Vector3f fit_up(const std::vector<Segment>& segments, const Eigen::Vector
   bool any = false;
   for (const Segment& s : segments) {
     if (s.bent || s.normal.dot(up) < cos_tol) continue;
-    const double rms = std::max(s.rms_m, cfg.fit_rms_floor_m);
-    const double per_spread = static_cast<double>(s.cells.size()) / (rms * rms);
+    const double per_spread = information_per_spread(s, cfg);
     for (int k = 0; k < 2; ++k) {
       const Eigen::Vector3d e = s.axis[k].cast<double>();
       info += per_spread * s.spread_m2[k] * e * e.transpose();
