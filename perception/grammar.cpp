@@ -45,7 +45,13 @@ std::optional<double> successor(const Level& a, const Level& b, Direction dir, s
   if (lower.reach_above_m > spread || upper.reach_below_m > spread) return std::nullopt;
   double dev = deviation(rise, c.riser_min_m, c.riser_max_m);
   if (dir == Direction::Up) {
-    if (b.s_min <= a.s_min || std::abs(a.s_max - b.s_min) > c.max_level_gap_m) return std::nullopt;
+    if (b.s_min <= a.s_min) return std::nullopt;
+    // A level seen only as its front edge (a riser's top, a nosing's depth
+    // jump: a tread above the camera or edge-on) has an unseen tread reaching
+    // to the next riser, a tread's depth away. Only a seen tread can be a
+    // landing, so the gap is a plausible tread.
+    const float gap = b.s_min - a.s_max;
+    if (a.s_max <= a.s_min ? !din_tread_ok(gap, c) : std::abs(gap) > c.max_level_gap_m) return std::nullopt;
     if (a_nosing) {
       const float tread = b.s_min - *a_nosing;
       if (tread < c.landing_min_depth_m) {

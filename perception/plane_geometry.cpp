@@ -147,7 +147,10 @@ Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f&
     grp.support = static_cast<int>(s.cells.size());
     grp.normal = (R * s.normal) * static_cast<float>(grp.support);
     const Eigen::Vector3f n = R * s.normal, c = R * s.centroid;
-    if (n.z() > cos_h) {
+    // A surface shows only its front: an upward-facing one at or above the
+    // camera's eye is seen from its back, so it is noise on a grazing patch
+    // (or a misfit underside), never a tread.
+    if (n.z() > cos_h && c.z() < 0) {
       grp.key = c.z();
       out.horizontal.push_back(std::move(grp));
     } else if (std::abs(n.z()) < sin_v) {

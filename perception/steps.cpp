@@ -20,25 +20,51 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   // A tread less than the lowest plausible rise above a riser's top is that
   // riser's own: a nosing overhang hides the riser's top under its slab.
   const float min_rise_m = cfg.riser_min_m * (1 - cfg.din_tolerance);
+  // A riser at range splits across its width into fragments with one top:
+  // they are one level, as wide as all of them together.
+  std::vector<Level> tops;
+  const float near = cfg.riser_at_nosing_m;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
-    if (ps.planes[i].kind != PlaneKind::Riser || !e.top_in_view || e.t_max - e.t_min < cfg.min_step_width_m) continue;
+    if (ps.planes[i].kind != PlaneKind::Riser || !e.top_in_view) continue;
+    auto same = std::find_if(tops.begin(), tops.end(), [&](const Level& l) {
+      return std::abs(l.z - e.z_max) < same_level && std::abs(l.s_min - e.s_mean) < near &&
+             std::max(l.t_min, e.t_min) - std::min(l.t_max, e.t_max) < near;
+    });
+    if (same == tops.end()) {
+      tops.push_back({-1, e.z_max, e.s_mean, e.s_mean, e.t_min, e.t_max, false, 0.0f, true});
+    } else {
+      same->t_min = std::min(same->t_min, e.t_min);
+      same->t_max = std::max(same->t_max, e.t_max);
+    }
+  }
+  for (const Level& top : tops) {
+    if (top.t_max - top.t_min < cfg.min_step_width_m) continue;
     bool seen = false;
     for (size_t k = 0; k < n_treads && !seen; ++k)
-      seen = levels[k].z > e.z_max - same_level && levels[k].z < e.z_max + min_rise_m &&
-             levels[k].s_max > e.s_mean - behind && levels[k].s_min < e.s_mean + ahead;
-    if (!seen) levels.push_back({-1, e.z_max, e.s_mean, e.s_mean, e.t_min, e.t_max, false, 0.0f, true});
+      seen = levels[k].z > top.z - same_level && levels[k].z < top.z + min_rise_m &&
+             levels[k].s_max > top.s_min - behind && levels[k].s_min < top.s_min + ahead;
+    if (!seen) levels.push_back(top);
   }
   // Likewise far treads seen from above are strips too thin for planes, but
-  // their nosings show as depth jumps: the tread ends there.
+  // their nosings show as depth jumps: the tread ends there. A jump at a
+  // riser's top level belongs to it too (its nosing seen from below, or the
+  // rim of a hole in a dark tread): one surface is one level.
+  const size_t n_surfaces = levels.size();
   for (const JumpEdge& j : edges) {
     bool seen = false;
-    for (size_t k = 0; k < n_treads && !seen; ++k) {
+    for (size_t k = 0; k < n_surfaces && !seen; ++k) {
       seen = std::abs(levels[k].z - j.z) < same_level && levels[k].s_max > j.s - ahead &&
              levels[k].s_min < j.s + behind;
       // The farthest edge that ends it (a tread holds one nosing).
       if (seen && (!levels[k].far_edge || j.nosing_s > levels[k].edge_s)) levels[k].edge_s = j.nosing_s;
       levels[k].far_edge = levels[k].far_edge || seen;
+      // A riser's top shows its step's width only as far as the riser was
+      // segmented; the nosing's jump shows the rest.
+      if (seen && levels[k].plane < 0) {
+        levels[k].t_min = std::min(levels[k].t_min, j.t_min);
+        levels[k].t_max = std::max(levels[k].t_max, j.t_max);
+      }
     }
     if (!seen) levels.push_back({-1, j.z, j.s, j.s, j.t_min, j.t_max, true, j.nosing_s});
   }

@@ -1,9 +1,15 @@
 #include "perception/grammar.hpp"
+#include "perception/normals.hpp"
 #include "perception/pipeline.hpp"
+#include "perception/plane_geometry.hpp"
 #include "perception/reconstruction.hpp"
+#include "perception/region_growing.hpp"
 #include "synthetic.hpp"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 
 namespace stairs {
 namespace {
@@ -220,6 +226,91 @@ TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
   EXPECT_NEAR(steps[3].nosing_m.x(), 1.75, 1e-4);
   EXPECT_NEAR(steps[3].nosing_m.z(), 0.09 + 0.18, 1e-4);
   EXPECT_NEAR(*steps[2].tread_depth_m, 0.25, 1e-4);
+}
+
+// A robot's camera below the treads sees only risers, up to a flight whose
+// goings are 0.34 m (DIN allows 0.37): an unseen tread between two risers'
+// tops is as deep as any plausible tread, not only as a gap between seen
+// planes. A riser split across its width at range is one level, and the
+// nosing's depth jump shows the step's width beyond the riser's fragments.
+TEST(PerceptionSteps, RisersSeenFromBelowChainAcrossAnyPlausibleTread) {
+  PlaneSet ps;
+  auto add = [&](PlaneKind kind, const PlaneExtent& e) { add_plane(ps, kind, e); };
+  add(PlaneKind::Tread, {0.3f, 1.0f, -0.5f, 0.5f, -0.45f, -0.45f, 0.65f, -0.45f});
+  for (int k = 0; k < 3; ++k) {
+    const float s = 1.0f + 0.34f * k, z0 = -0.45f + 0.16f * k;
+    if (k < 2) {
+      add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.16f, s, z0 + 0.08f});
+    } else {  // two fragments, 3 cm apart, whose tops agree within noise
+      add(PlaneKind::Riser, {s, s, -0.4f, 0.0f, z0 + 0.05f, z0 + 0.16f, s, z0 + 0.1f});
+      add(PlaneKind::Riser, {s + 0.01f, s + 0.01f, 0.03f, 0.2f, z0 + 0.06f, z0 + 0.165f, s + 0.01f, z0 + 0.11f});
+    }
+  }
+  JumpEdge nosing;  // the third riser's top seen from below, across the flight
+  nosing.s = nosing.nosing_s = 1.68f;
+  nosing.z = -0.45f + 0.16f * 3;
+  nosing.t_min = -0.5f;
+  nosing.t_max = 0.5f;
+  const StairConfig cfg;
+  ASSERT_GT(0.34f, cfg.max_level_gap_m);  // more than a gap between two seen planes
+  const std::vector<Level> levels = tread_levels(ps, {nosing}, cfg);
+  ASSERT_EQ(levels.size(), 4u);
+  EXPECT_TRUE(levels[3].far_edge);
+  EXPECT_NEAR(levels[3].t_min, -0.5f, 1e-5);
+  EXPECT_NEAR(levels[3].t_max, 0.5f, 1e-5);
+  const StairChain chain = best_chain(levels, cfg);
+  EXPECT_EQ(chain.direction, Direction::Up);
+  ASSERT_EQ(chain.steps(), 3);
+  std::vector<Step> steps = steps_from_chain(ps, chain, cfg);
+  reconstruct(ps, chain, steps, cfg);
+  ASSERT_EQ(steps.size(), 3u);
+  EXPECT_NEAR(*steps[0].tread_depth_m, 0.34, 1e-4);
+  EXPECT_NEAR(*steps[1].tread_depth_m, 0.34, 1e-4);
+  EXPECT_NEAR(*steps[2].riser_height_m, 0.16, 0.006);
+  EXPECT_NEAR(steps[2].width_m, 1.0, 1e-4);
+  // A gap no tread has (0.6 m) is no step: a seen tread would be a landing, an unseen one is unknown.
+  ps = PlaneSet{};
+  add(PlaneKind::Tread, {0.3f, 1.0f, -0.5f, 0.5f, -0.45f, -0.45f, 0.65f, -0.45f});
+  for (int k = 0; k < 2; ++k) {
+    const float s = 1.0f + 0.6f * k, z0 = -0.45f + 0.16f * k;
+    add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.16f, s, z0 + 0.08f});
+  }
+  EXPECT_EQ(best_chain(tread_levels(ps, {}, cfg), cfg).steps(), 1);
+}
+
+// A surface shows only its front. A patch 0.2 m above a robot's camera whose
+// fit leans 8 deg towards it (noise on a riser's top seen at a grazing angle
+// did this on a D435) faces up within the tread tolerance, but an upward-facing
+// surface above the eye is seen from its back: no tread. The same patch
+// below the camera is one.
+TEST(PerceptionPlaneGeometry, AnUpwardFacingPatchAboveTheCameraIsNoTread) {
+  const double tilt = 8 * M_PI / 180;
+  const Eigen::Vector3d n(-std::sin(tilt), 0, std::cos(tilt));  // world, towards the camera
+  for (const double dz : {0.2, -0.2}) {
+    DepthImage img;
+    img.K = {320, 240, 262.5, 262.5, 159.5, 119.5};
+    img.depth.assign(320 * 240, 0);
+    const Eigen::Matrix3d R = test::optical_to_world(5, 0);
+    const Eigen::Vector3d p0(2.6, 0, dz);
+    for (int v = 0; v < 240; ++v)
+      for (int u = 0; u < 320; ++u) {
+        const Eigen::Vector3d ray_o((u - 159.5) / 262.5, (v - 119.5) / 262.5, 1.0), d = R * ray_o;
+        const double t = p0.dot(n) / d.dot(n);  // along the optical ray, t = depth
+        const Eigen::Vector3d x = t * d;
+        if (t > 0 && std::abs(x.x() - p0.x()) < 0.3 && std::abs(x.y()) < 0.5)
+          img.depth[static_cast<size_t>(v) * 320 + u] = static_cast<uint16_t>(t * 1000);
+      }
+    const PerceptionConfig cfg;
+    NormalGrid grid;
+    compute_normals(img, cfg.normals, grid);
+    std::vector<int> labels;
+    const std::vector<Segment> segments = grow_regions(grid, cfg.region_growing, 320, 240, labels);
+    ASSERT_FALSE(segments.empty()) << dz;
+    const PlaneSet ps = plane_geometry(grid, segments, R.cast<float>(), cfg.plane_geometry, cfg.output);
+    const long treads = std::count_if(ps.planes.begin(), ps.planes.end(),
+                                      [](const Plane& p) { return p.kind == PlaneKind::Tread; });
+    EXPECT_EQ(treads, dz > 0 ? 0 : 1) << dz;
+  }
 }
 
 TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
