@@ -79,12 +79,21 @@ std::vector<JumpPoint> jump_points(const NormalGrid& g, const DepthImage& f, con
       while (above >= 0 && gy - above <= cfg.gap_cells + 1 && !g.has_point[g.index(gx, above)]) --above;
       if (above < 0 || !g.has_point[g.index(gx, above)]) continue;
       const float zc = g.points[c].z(), zf = g.points[g.index(gx, above)].z();
-      if (zf - zc < std::max(cfg.jump_min_m, cfg.jump_ratio * zc)) continue;
+      const float jump = std::max(cfg.jump_min_m, cfg.jump_ratio * zc);
+      if (zf - zc < jump) continue;
       const Eigen::Vector3f& p = g.points[c];
       Eigen::Vector3f at_row = p;
       const Eigen::Vector2f px(gx * g.cell_px + half, gy * g.cell_px + half);
       if (g.has_normal[c]) {
-        const NearSurface near{p, std::abs(g.normals[c].dot(up)) > level_cos ? up : g.normals[c]};
+        const bool level = std::abs(g.normals[c].dot(up)) > level_cos;
+        const NearSurface near{p, level ? up : g.normals[c]};
+        // A far floor seen at a grazing angle grows in depth by more than a
+        // jump from one cell to the next, yet the far cell lies on the near
+        // cell's level: no discontinuity, no nosing.
+        if (level) {
+          const float on_near = near.point_at(f.K, px.x(), above * g.cell_px + half).z();
+          if (on_near > 0 && std::abs(zf - on_near) < jump) continue;
+        }
         const float v = jump_row_px(f, near, gx * g.cell_px, g.cell_px, (gy + 1) * g.cell_px - 1, above * g.cell_px,
                                     zf, cfg);
         if (std::isfinite(v)) {

@@ -63,6 +63,9 @@ std::optional<double> successor(const Level& a, const Level& b, Direction dir, s
     // Going down the lower tread shows beyond the upper nosing (its near part is hidden).
     if (b.s_max <= a.s_max || b.s_min < a.s_max - c.max_level_gap_m) return std::nullopt;
     const float tread = b.s_max - a.s_max;
+    // A level seen only as its nosing's jump (a far tread, a strip too thin for
+    // a plane) is a tread between two nosings: only a seen tread can be a landing.
+    if (b.s_max <= b.s_min && !din_tread_ok(tread, c)) return std::nullopt;
     if (tread < c.landing_min_depth_m) {
       if (!din_tread_ok(tread, c) || !din_rule_ok(rise, tread, c)) return std::nullopt;
       dev += deviation(tread, c.tread_min_m, c.tread_max_m);

@@ -94,6 +94,22 @@ TEST(PerceptionGrammar, DescendingChainFromTheLanding) {
   }
 }
 
+// Going down, a level seen only as a nosing's jump is a tread between two
+// nosings; a jump 4 m past the last nosing (noise at the sensor's range on
+// the floor below) is no 4 m landing: the floor's plane is the next level.
+TEST(PerceptionGrammar, AJumpAloneIsNoLandingGoingDown) {
+  Level far_jump = level(-1.49f, 5.5f, 5.5f);
+  far_jump.far_edge = true;
+  far_jump.edge_s = 5.5f;
+  const std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), level(-1.17f, 1.6f, 1.78f), level(-1.34f, 1.9f, 2.06f),
+                                     level(-1.51f, 2.2f, 4.9f), far_jump};
+  const StairChain ch = best_chain(levels, StairConfig{});
+  EXPECT_EQ(ch.direction, Direction::Down);
+  ASSERT_EQ(ch.steps(), 3);
+  EXPECT_EQ(ch.levels.back().z, -1.51f);
+  EXPECT_EQ(ch.landings, 0);
+}
+
 TEST(PerceptionReconstruction, AMidLandingEndingInADropIsTheLastStepGoingDown) {
   // The same flight seen from above, but its last level ends in a depth jump
   // 1.3 m on: a landing with the next flight below its edge, not the floor.
