@@ -45,9 +45,11 @@ void update(MapStep& m, const ObservedStep& o, const Pose4& pose, const MergeCon
   const int cap = c.max_average_weight;
   if (o.riser_x_m) m.riser_x_m.add(*o.riser_x_m, cap);
   m.nosing_x_m.add(o.nosing_m.x(), cap);
-  // A tread's plane measures its height; an edge alone only while no plane has.
+  // A tread's plane measures its height once it has been seen in enough
+  // observations; an edge alone only until then.
   if (o.tread_z_m) m.tread_z_m.add(*o.tread_z_m, cap);
   else m.edge_z_m.add(o.nosing_m.z(), cap);
+  m.tread_z_settled = m.tread_z_m.count >= c.min_tread_plane_observations;
   if (o.riser_height_m) m.riser_height_m.add(*o.riser_height_m, cap);
   if (o.tread_far_x_m) m.tread_far_x_m = std::max(m.tread_far_x_m, *o.tread_far_x_m);
   if (o.y_min_m) m.y_min_m.add(*o.y_min_m, cap);

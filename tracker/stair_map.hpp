@@ -38,7 +38,11 @@ struct MapStep {
   int riser_points_seen = 0, tread_points_seen = 0;          // for the cyclic cap
 
   double x() const { return riser_x_m.known() ? riser_x_m.value : nosing_x_m.value; }
-  double z() const { return tread_z_m.known() ? tread_z_m.value : edge_z_m.value; }
+  bool tread_z_settled = false;  // the tread plane seen in merge.min_tread_plane_observations observations
+  // A tread plane measures the height once settled; edges stand in until then.
+  double z() const {
+    return tread_z_m.known() && (tread_z_settled || !edge_z_m.known()) ? tread_z_m.value : edge_z_m.value;
+  }
 };
 
 struct StairMap {
