@@ -74,7 +74,31 @@ bool fits_between(const StairMap& map, size_t at, const ObservedStep& o, double 
   return true;
 }
 
+// Normalised distance of an observed step from a model step (dz / riser +
+// dx / tread), or infinity beyond the match tolerances.
+double distance(const ObservedStep& o, const MapStep& m, double riser, double tread, const MergeConfig& c) {
+  const double dz = std::abs(o.z() - m.z()) / riser;
+  const double dx = std::abs(o.x() - m.x()) / tread;
+  return dz < c.match_riser_fraction && dx < c.match_tread_fraction ? dz + dx : 1e9;
+}
+
 }  // namespace
+
+bool agrees_where_it_overlaps(const StairMap& map, const std::vector<ObservedStep>& observed, const MergeConfig& c,
+                              const StairPriorConfig& stair) {
+  if (map.empty()) return true;
+  const double riser = typical_riser_m(map, stair);
+  const double tread = typical_tread_m(map, stair);
+  const double lo = map.steps.front().x() - c.match_tread_fraction * tread;
+  const double hi = map.steps.back().x() + c.match_tread_fraction * tread;
+  for (const ObservedStep& o : observed) {
+    if (o.x() < lo || o.x() > hi) continue;
+    const bool matched = std::any_of(map.steps.begin(), map.steps.end(),
+                                     [&](const MapStep& m) { return distance(o, m, riser, tread, c) < 1e9; });
+    if (!matched) return false;
+  }
+  return true;
+}
 
 std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& pose) {
   std::vector<ObservedStep> out;
@@ -113,10 +137,9 @@ int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4&
     double best = 1e9;
     for (size_t k = 0; k < map.steps.size(); ++k) {
       if (taken[k]) continue;
-      const double dz = std::abs(observed[i].z() - map.steps[k].z()) / riser;
-      const double dx = std::abs(observed[i].x() - map.steps[k].x()) / tread;
-      if (dz < c.match_riser_fraction && dx < c.match_tread_fraction && dz + dx < best) {
-        best = dz + dx;
+      const double d = distance(observed[i], map.steps[k], riser, tread, c);
+      if (d < best) {
+        best = d;
         match[i] = static_cast<int>(k);
       }
     }

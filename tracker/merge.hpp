@@ -29,6 +29,12 @@ struct ObservedStep {
 
 std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& pose);
 
+// Whether every observed step within the model's extent (along x, half a
+// tread beyond its ends) matches a model step: steps placed by a prior alone
+// (nothing registered) must land on the model where they overlap it.
+bool agrees_where_it_overlaps(const StairMap& map, const std::vector<ObservedStep>& observed, const MergeConfig& c,
+                              const StairPriorConfig& stair);
+
 // Returns the number of new steps inserted.
 int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4& pose, const MergeConfig& c,
           const StairPriorConfig& stair, double min_distance_m);

@@ -188,6 +188,14 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
     if (std::abs(wrap_angle(yaw - prior.yaw_rad)) <= config_.motion.max_yaw_jump_deg * M_PI / 180.0) start_pose.yaw_rad = yaw;
   }
   const RegistrationInput input = registration_input(obs, config_.registration.points_per_plane);
+  // An observation with no plane (nosings only: dark treads seen from above)
+  // has nothing to register. Where the constant-velocity prior puts its
+  // steps between the model's, merging them duplicated steps (a robot's
+  // descent: 8 false model steps); odometry places it well enough.
+  if (!with_odometry && input.riser_points.empty() && input.tread_points.empty() &&
+      !agrees_where_it_overlaps(map_, observed_steps(obs, start_pose), config_.merge, config_.stair))
+    return place_by_prior(obs, prior, with_odometry, since_accept_s,
+                          "nosings only, off the model's steps: not merged");
   // Odometry over a gap is a better prior than a whole-step search.
   const bool relocalising =
       !with_odometry && (since_accept_s > config_.relocalisation.after_s || model_.state == TrackingState::Lost);

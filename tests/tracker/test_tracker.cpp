@@ -183,6 +183,41 @@ TEST(Tracker, ASingleOddFrameNeverLeavesAStepInTheModel) {
   EXPECT_FALSE(tracker.model().flights.empty());
 }
 
+// Dark treads seen from above show nosings only: nothing to register. Where
+// the motion prior puts them on the model's steps they are merged; half a
+// tread off they would be new steps between the model's, so they are not.
+TEST(Tracker, NosingsOnlyAreMergedOnlyWhereTheyLandOnTheModelsSteps) {
+  ObservationMaker maker(kStair, 4);
+  Tracker tracker;
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  for (int k = 0; k < 30; ++k) tracker.update(maker.make(cams[k], k * 33333));
+  auto nosings_only = [&](int k) {
+    Observation obs = maker.make(cams[k], k * 33333);
+    obs.planes.clear();
+    for (Step& st : obs.steps) st.riser_plane = st.tread_plane = -1;
+    return obs;
+  };
+  auto model_steps = [&] {
+    size_t n = 0;
+    for (const auto& f : tracker.model().flights) n += f.steps.size();
+    return n;
+  };
+  const size_t steps = model_steps();
+  ASSERT_GT(steps, 0u);
+  Observation on = nosings_only(30);
+  ASSERT_FALSE(on.steps.empty());
+  const int before = tracker.model().observations_fused;
+  const int fused = tracker.update(on).observations_fused;
+  EXPECT_EQ(fused, before + 1);  // on the model's steps: merged
+  Observation off = nosings_only(31);
+  shift(off, Eigen::Vector3f(0.14f, 0.0f, 0.0f));
+  const StairModel& m = tracker.update(off);
+  EXPECT_NE(m.status.find("not merged"), std::string::npos) << m.status;
+  EXPECT_EQ(m.observations_fused, fused);
+  EXPECT_EQ(model_steps(), steps);
+  EXPECT_TRUE(m.camera_valid);  // the prior still places the camera
+}
+
 TEST(Tracker, OutOfOrderObservationsAreDroppedAndCounted) {
   ObservationMaker maker(kStair, 5);
   Tracker tracker;
