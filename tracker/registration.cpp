@@ -164,7 +164,6 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
       }
       if (wx > 0) reg.pose.t_m.x() += sx / wx;
       if (wz > 0) reg.pose.t_m.z() += sz / wz;
-      reg.x_observed = reg.x_observed || wx > 0;
     }
     if (thr <= c.icp_min_distance_m) break;
   }
@@ -182,6 +181,9 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
   };
   for (const auto& p : risers) count(p + t, nearest_riser(prof, p + t).distance, riser_in, riser_within);
   for (const auto& p : treads) count(p + t, nearest_tread(prof, p + t).distance, tread_in, tread_within);
+  int nosing_in = 0;
+  for (const auto& p : nosings) nosing_in += nearest_nosing(prof, p + t).norm() < c.accept_distance_m;
+  reg.x_inliers = riser_in + nosing_in;
   reg.inliers = riser_in + tread_in;
   reg.within = riser_within + tread_within;
   auto ratio = [](int in, int within, size_t all) {

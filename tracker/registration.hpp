@@ -38,7 +38,8 @@ struct Registration {
                               // accept_distance_m of it, the lower of risers' and treads'
   int inliers = 0;
   int within = 0;             // points within the model's extent (none: nothing to register against)
-  bool x_observed = false;    // risers or nosings constrained x
+  int x_inliers = 0;          // riser points and nosings that agree at the final pose: all that fixes x
+                              // (treads fix only z)
 };
 
 // Registers with yaw fixed to `initial.yaw_rad`, starting from `initial`.

@@ -214,10 +214,18 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   // (whole-step shifts are relocalisation's business) and most points must agree.
   const double step_m = relocalising ? (config_.relocalisation.step_range + 0.5) * typical_tread_m(map_, config_.stair) : 0.0;
   const double jump = (reg.pose.t_m - start_pose.t_m).norm();
-  if (reg.inlier_ratio < config_.motion.min_inlier_ratio || jump > config_.motion.max_translation_jump_m + step_m) {
+  // After a gap the prior's position along the stair is stale, and a level
+  // (the landing the camera stands on) agrees wherever along it the camera is:
+  // a relocalisation must rest on risers or nosings (the next flight seen
+  // from a mid landing was fitted 0.7 m short, onto the last one).
+  const bool x_unknown = relocalising && !dead_reckoned && reg.x_inliers == 0;
+  if (x_unknown || reg.inlier_ratio < config_.motion.min_inlier_ratio ||
+      jump > config_.motion.max_translation_jump_m + step_m) {
     ++rejected_registrations_;
-    const std::string why = "registration rejected (inliers " + std::to_string(reg.inlier_ratio) + ", jump " +
-                            std::to_string(jump) + " m)";
+    const std::string why = x_unknown ? std::string("relocalisation rejected: no riser or nosing agrees, position "
+                                                    "along the stair unknown")
+                                      : "registration rejected (inliers " + std::to_string(reg.inlier_ratio) +
+                                            ", jump " + std::to_string(jump) + " m)";
     if (!reseed(obs, why)) place_by_prior(obs, prior, with_odometry, since_accept_s, why);
     return;
   }

@@ -218,6 +218,31 @@ TEST(Tracker, NosingsOnlyAreMergedOnlyWhereTheyLandOnTheModelsSteps) {
   EXPECT_TRUE(m.camera_valid);  // the prior still places the camera
 }
 
+// After a gap the prior's position along the stair is stale, and treads fix
+// only the height: a relocalisation on which no riser or nosing agrees is
+// rejected (a mid landing fitted the next flight 0.7 m short, onto the last).
+TEST(Tracker, ARelocalisationMustRestOnRisersOrNosings) {
+  ObservationMaker maker(kStair, 6);
+  Tracker tracker;
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  for (int k = 0; k < 30; ++k) tracker.update(maker.make(cams[k], k * 33333));
+  // Treads only, the nosings lifted far above the model: nothing fixes x.
+  Observation obs = maker.make(cams[45], 45 * 33333);
+  for (Step& st : obs.steps) {
+    st.riser_plane = -1;
+    st.nosing_m.z() += 3.0;
+  }
+  const int64_t rejected = tracker.rejected_registrations();
+  const int fused = tracker.model().observations_fused;
+  const StairModel& m = tracker.update(obs);
+  EXPECT_NE(m.status.find("position along the stair unknown"), std::string::npos) << m.status;
+  EXPECT_EQ(tracker.rejected_registrations(), rejected + 1);
+  EXPECT_EQ(m.observations_fused, fused);
+  // The same frame with its risers relocalises.
+  const StairModel& ok = tracker.update(maker.make(cams[46], 46 * 33333));
+  EXPECT_EQ(ok.observations_fused, fused + 1) << ok.status;
+}
+
 TEST(Tracker, OutOfOrderObservationsAreDroppedAndCounted) {
   ObservationMaker maker(kStair, 5);
   Tracker tracker;
