@@ -56,6 +56,10 @@ struct RegistrationConfig {
   int points_per_plane = 128;           // observation points used per tread/riser (even stride)
   double nosing_weight_points = 40.0;   // one observed nosing counts as this many plane points
   double accept_distance_m = 0.04;      // m; a point within this of the model counts as agreeing
+  double foot_max_offset_rise_fraction = 0.25;  // of the lowest step's rise: a level this close to where its
+                                                // riser begins is the one it stands on (levels differ by a rise)
+  double foot_max_gap_m = 0.15;  // m; ... and reaches to within this of its riser along the stair (a nosing
+                                 // overhangs by up to 5 cm, a plane's trimmed extent stops a few cm short)
 
   template <class V>
   void visit(V& v) {
@@ -67,6 +71,8 @@ struct RegistrationConfig {
     v("points_per_plane", points_per_plane, 1, limits::kPlanePoints);
     v("nosing_weight_points", nosing_weight_points, 0.0, 10000.0);
     v("accept_distance_m", accept_distance_m, 0.0001, 1.0);
+    v("foot_max_offset_rise_fraction", foot_max_offset_rise_fraction, 0.0, 1.0);
+    v("foot_max_gap_m", foot_max_gap_m, 0.0, 10.0);
   }
 };
 
@@ -108,10 +114,11 @@ struct OdometryConfig {
   }
 };
 
-// --- relocalisation after a gap or loss: a whole-step search (relocalisation.hpp)
+// --- relocalisation after a gap, a loss, or a registration all of whose risers and nosings disagree:
+// a search over step shifts (relocalisation.hpp)
 struct RelocalisationConfig {
   double after_s = 0.2;     // s; a gap longer than this triggers a whole-step search
-  int step_range = 2;       // whole-step shifts tried each way
+  int step_range = 2;       // whole-step shifts tried each way (starts half a step apart)
   double min_gain = 0.05;   // of the prior's agreeing points: a shift must add this many more
 
   template <class V>

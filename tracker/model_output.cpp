@@ -99,15 +99,18 @@ Beneath beneath(const StairModel& m, double x) {
   return b;
 }
 
-// Whether x lies over the part of the stair the model has seen.
-bool over_seen_part(const MapStep& last, const Eigen::Vector3d& origin, double x) {
-  return x <= std::max(last.x(), last.tread_far_x_m) - origin.x();
+// Whether x lies over the part of the stair the model has seen: before the
+// first riser only where the level it stands on was seen as a floor (a tread
+// seen one rise below is no floor: a flight whose first steps were hidden put a
+// hand-held camera 35 cm low over a "floor" that was the second tread).
+bool over_seen_part(const MapStep& first, const MapStep& last, const Eigen::Vector3d& origin, double x) {
+  return x <= std::max(last.x(), last.tread_far_x_m) - origin.x() && (first.on_seen_floor || x >= first.x() - origin.x());
 }
 
 // The camera in the model: its pose, the step beneath and its height over that step's tread;
 // known only over the part of the stair the model has seen.
 void place_camera(const Pose4& camera, const Eigen::Quaterniond& gravity_rotation, const Eigen::Vector3d& origin,
-                  const MapStep& last, StairModel& out) {
+                  const MapStep& first, const MapStep& last, StairModel& out) {
   const Eigen::Vector3d cam = camera.t_m - origin;
   out.camera_position_m = cam;
   out.camera_orientation = Eigen::Quaterniond(camera.rotation()) * gravity_rotation;
@@ -115,11 +118,12 @@ void place_camera(const Pose4& camera, const Eigen::Quaterniond& gravity_rotatio
   const Beneath b = beneath(out, cam.x());
   out.camera_step_index = b.step;
   out.camera_height_m = cam.z() - b.surface_z_m;
-  out.camera_beneath_known = over_seen_part(last, origin, cam.x());
+  out.camera_beneath_known = over_seen_part(first, last, origin, cam.x());
 }
 
 // The carrier's base from the placed camera and the mount (common/mount.hpp base_of_camera).
-void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const MapStep& last, StairModel& out) {
+void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const MapStep& first, const MapStep& last,
+                StairModel& out) {
   out.base_valid = out.camera_valid && mount.configured();
   if (!out.base_valid) return;
   const Eigen::Isometry3d base = base_of_camera(out.camera_position_m, out.camera_orientation, mount);
@@ -128,7 +132,7 @@ void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const M
   const Beneath b = beneath(out, out.base_position_m.x());
   out.base_step_index = b.step;
   out.base_height_m = out.base_position_m.z() - b.surface_z_m;
-  out.base_beneath_known = over_seen_part(last, origin, out.base_position_m.x());
+  out.base_beneath_known = over_seen_part(first, last, origin, out.base_position_m.x());
 }
 
 }  // namespace
@@ -164,8 +168,8 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
     }
   }
   out.flights.push_back(std::move(flight));
-  place_camera(camera, gravity_rotation, origin, *steps.back(), out);
-  place_base(mount, origin, *steps.back(), out);
+  place_camera(camera, gravity_rotation, origin, first, *steps.back(), out);
+  place_base(mount, origin, first, *steps.back(), out);
 }
 
 std::vector<Step> steps_from_camera(const StairModel& model) {

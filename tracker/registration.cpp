@@ -88,15 +88,54 @@ Eigen::Vector2d nearest_nosing(const Profile& p, const Eigen::Vector3d& q) {
 
 }  // namespace
 
-RegistrationInput registration_input(const Observation& obs, int points_per_plane) {
+// The level the lowest seen step stands on: a horizontal plane no step owns,
+// within max_offset_rise_fraction of a rise of where that step's riser begins
+// and reaching to within max_gap_m of it along the stair (a table top at that
+// height in front of a flight is no floor of it). It is the floor at a
+// flight's foot or the tread below, both in the model; the floor reaches
+// beyond a tread, and so it tells apart the whole-step shifts that the
+// periodic steps cannot.
+int foot_plane(const Observation& obs, const RegistrationConfig& c) {
+  const Step* lowest = nullptr;
+  for (const Step& s : obs.steps)
+    if (!lowest || s.nosing_m.z() < lowest->nosing_m.z()) lowest = &s;
+  if (!lowest || !lowest->riser_height_m) return -1;  // an inferred rise too: the riser's top or the median
+  const double foot_z = lowest->nosing_m.z() - *lowest->riser_height_m;
+  // Along the stair, away from the camera: the level reaches the riser's foot from before it
+  // (going up) or lies beyond it (going down, its near part hidden by the nosing).
+  const double axis = observed_axis_angle_rad(obs).value_or(0.0);
+  Eigen::Vector2d u(std::cos(axis), std::sin(axis));
+  if (u.dot(lowest->nosing_m.head<2>()) < 0) u = -u;
+  const double riser_at = u.dot(lowest->nosing_m.head<2>());
+  std::vector<bool> owned(obs.planes.size(), false);
+  for (const Step& s : obs.steps)
+    for (int k : {s.riser_plane, s.tread_plane})
+      if (k >= 0 && k < static_cast<int>(owned.size())) owned[k] = true;
+  int best = -1;
+  double best_dz = c.foot_max_offset_rise_fraction * *lowest->riser_height_m;
+  for (size_t k = 0; k < obs.planes.size(); ++k) {
+    const Plane& p = obs.planes[k];
+    if (owned[k] || (p.kind != PlaneKind::Tread && p.kind != PlaneKind::Landing)) continue;
+    double reach = -std::numeric_limits<double>::infinity();
+    for (const auto& q : p.points) reach = std::max(reach, u.dot(q.head<2>().cast<double>()));  // untrimmed
+    if (reach < riser_at - c.foot_max_gap_m) continue;
+    const double dz = std::abs(p.centroid.z() - foot_z);
+    if (dz < best_dz) best = static_cast<int>(k), best_dz = dz;
+  }
+  return best;
+}
+
+RegistrationInput registration_input(const Observation& obs, const RegistrationConfig& c) {
   RegistrationInput in;
   for (const Step& s : obs.steps) {
     if (s.riser_plane >= 0 && s.riser_plane < static_cast<int>(obs.planes.size()))
-      sample(obs.planes[s.riser_plane], points_per_plane, in.riser_points);
+      sample(obs.planes[s.riser_plane], c.points_per_plane, in.riser_points);
     if (s.tread_plane >= 0 && s.tread_plane < static_cast<int>(obs.planes.size()))
-      sample(obs.planes[s.tread_plane], points_per_plane, in.tread_points);
+      sample(obs.planes[s.tread_plane], c.points_per_plane, in.tread_points);
     in.nosings.push_back(s.nosing_m);
   }
+  const int foot = foot_plane(obs, c);
+  if (foot >= 0) sample(obs.planes[foot], c.points_per_plane, in.tread_points);
   return in;
 }
 
@@ -181,9 +220,15 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
   };
   for (const auto& p : risers) count(p + t, nearest_riser(prof, p + t).distance, riser_in, riser_within);
   for (const auto& p : treads) count(p + t, nearest_tread(prof, p + t).distance, tread_in, tread_within);
-  int nosing_in = 0;
-  for (const auto& p : nosings) nosing_in += nearest_nosing(prof, p + t).norm() < c.accept_distance_m;
+  int nosing_in = 0, nosing_within = 0;
+  for (const auto& p : nosings) {
+    const Eigen::Vector3d q = p + t;
+    nosing_in += nearest_nosing(prof, q).norm() < c.accept_distance_m;
+    nosing_within += q.x() >= x_lo && q.x() <= x_hi && q.z() >= z_lo && q.z() <= z_hi;
+  }
   reg.x_inliers = riser_in + nosing_in;
+  reg.x_within = riser_within + nosing_within;
+  reg.nosing_inliers = nosing_in;
   reg.inliers = riser_in + tread_in;
   reg.within = riser_within + tread_within;
   auto ratio = [](int in, int within, size_t all) {

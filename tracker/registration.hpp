@@ -21,7 +21,14 @@ struct RegistrationInput {
   std::vector<Eigen::Vector3d> riser_points, tread_points, nosings;
 };
 
-RegistrationInput registration_input(const Observation& obs, int points_per_plane);
+// The level the lowest seen step stands on: the index of a horizontal plane no
+// step owns, within foot_max_offset_rise_fraction of a rise of where that
+// step's riser begins and reaching to within foot_max_gap_m of it along the
+// stair; -1 if none.
+int foot_plane(const Observation& obs, const RegistrationConfig& c);
+
+// The steps' planes and nosings, and the level the lowest step stands on.
+RegistrationInput registration_input(const Observation& obs, const RegistrationConfig& c);
 
 // Direction of the stair axis (riser normals, tread edges) in the gravity-aligned
 // camera frame, as an angle about z modulo pi; nullopt without risers or treads.
@@ -40,6 +47,8 @@ struct Registration {
   int within = 0;             // points within the model's extent (none: nothing to register against)
   int x_inliers = 0;          // riser points and nosings that agree at the final pose: all that fixes x
                               // (treads fix only z)
+  int x_within = 0;           // riser points and nosings within the model's extent
+  int nosing_inliers = 0;     // nosings that agree at the final pose
 };
 
 // Registers with yaw fixed to `initial.yaw_rad`, starting from `initial`.

@@ -7,15 +7,21 @@ namespace stairs {
 Registration relocalise(const RegistrationInput& in, const StairMap& map, const Pose4& prior,
                         const RelocalisationConfig& c, const RegistrationConfig& registration,
                         const StairPriorConfig& stair) {
-  const Eigen::Vector3d step(typical_tread_m(map, stair), 0.0, typical_riser_m(map, stair));
+  // Starts half a step apart: ICP reaches icp_max_tread_fraction (0.4) of a
+  // tread from its start, so whole-step starts leave offsets near half a step
+  // (a robot tipping over a nosing jumps that far in one frame) out of reach.
+  const Eigen::Vector3d half_step = 0.5 * Eigen::Vector3d(typical_tread_m(map, stair), 0.0, typical_riser_m(map, stair));
   Registration best;
-  for (int k = 0; k <= c.step_range; k = k > 0 ? -k : -k + 1) {
+  for (int k = 0; k <= 2 * c.step_range; k = k > 0 ? -k : -k + 1) {
     Pose4 start = prior;
-    start.t_m += k * step;
+    start.t_m += k * half_step;
     const Registration r = register_to_map(in, map, start, registration, stair);
-    // A shift must beat the prior clearly: min_gain more agreeing points.
-    const double margin = k == 0 ? 0.0 : c.min_gain * best.inliers + 1;
-    if (k == 0 || r.inliers > best.inliers + margin) best = r;
+    // A shift must beat the prior clearly: min_gain more agreeing points. A
+    // nosing counts as many points as in the ICP: going down, the nosings are
+    // all that fixes x (treads agree wherever along them the camera is).
+    auto agreeing = [&](const Registration& g) { return g.inliers + registration.nosing_weight_points * g.nosing_inliers; };
+    const double margin = k == 0 ? 0.0 : c.min_gain * agreeing(best) + 1;
+    if (k == 0 || agreeing(r) > agreeing(best) + margin) best = r;
     if (c.step_range == 0) break;
   }
   return best;

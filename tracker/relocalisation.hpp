@@ -1,7 +1,8 @@
-// Re-localisation against the model after a gap: a periodic stair is ambiguous
-// by whole steps, so registration is tried from the motion prior shifted by
-// -k..k steps and the shift that agrees best with the model wins (ties go to the
-// smallest shift, i.e. to the motion prior and its step-count bookkeeping).
+// Re-localisation against the model after a gap, or when a registration's
+// nosings and risers all disagree: a periodic stair is ambiguous by whole
+// steps, so registration is tried from the motion prior shifted by -k..k steps
+// in half steps and the shift that agrees best with the model wins (ties go to
+// the smallest shift, i.e. to the motion prior and its step-count bookkeeping).
 #pragma once
 
 #include "tracker/registration.hpp"

@@ -34,6 +34,8 @@ struct MapStep {
   double tread_far_x_m = -1e9;   // farthest observed back edge of the tread
   int confirmations = 0;
   bool reconstructed = false;    // filled in between seen steps, never observed
+  bool on_seen_floor = false;    // its riser stands on a level seen deeper than any tread (a floor or a
+                                 // landing): what lies before it is known, not just one rise below
   std::vector<Eigen::Vector3f> riser_points, tread_points;  // W, ICP rejections, capped
   int riser_points_seen = 0, tread_points_seen = 0;          // for the cyclic cap
 

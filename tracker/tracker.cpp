@@ -62,8 +62,10 @@ bool Tracker::seed(const Observation& obs) {
   if (!yaw) return false;
   Pose4 pose;
   pose.yaw_rad = *yaw;
-  merge(map_, observed_steps(obs, pose), pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
+  const std::vector<ObservedStep> observed = observed_steps(obs, pose);
+  merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
   if (map_.empty()) return false;
+  note_floor(obs, observed);
   accepted_.push_back({obs.source_utime, pose, to_base_m(obs)});
   model_.observations_fused = 1;
   model_.state = TrackingState::Ok;
@@ -187,7 +189,7 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
     const double yaw = yaw_from_axis(*axis, prior.yaw_rad);
     if (std::abs(wrap_angle(yaw - prior.yaw_rad)) <= config_.motion.max_yaw_jump_deg * M_PI / 180.0) start_pose.yaw_rad = yaw;
   }
-  const RegistrationInput input = registration_input(obs, config_.registration.points_per_plane);
+  const RegistrationInput input = registration_input(obs, config_.registration);
   // An observation with no plane (nosings only: dark treads seen from above)
   // has nothing to register. Where the constant-velocity prior puts its
   // steps between the model's, merging them duplicated steps (a robot's
@@ -197,10 +199,18 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
     return place_by_prior(obs, prior, with_odometry, since_accept_s,
                           "nosings only, off the model's steps: not merged");
   // Odometry over a gap is a better prior than a whole-step search.
-  const bool relocalising =
+  bool relocalising =
       !with_odometry && (since_accept_s > config_.relocalisation.after_s || model_.state == TrackingState::Lost);
   Registration reg = relocalising ? relocalise(input, map_, start_pose, config_.relocalisation, config_.registration, config_.stair)
                                   : register_to_map(input, map_, start_pose, config_.registration, config_.stair);
+  // Risers and nosings on the model, none of which agrees: x is the prior's
+  // alone, and the prior is off by more than ICP reaches (a robot tipping over
+  // a nosing jumps half a step in a frame; the treads then pulled z onto the
+  // wrong level for 19 frames). Search as after a gap.
+  if (!relocalising && !with_odometry && reg.x_within > 0 && reg.x_inliers == 0) {
+    relocalising = true;
+    reg = relocalise(input, map_, start_pose, config_.relocalisation, config_.registration, config_.stair);
+  }
   // Entirely beyond the model (the next flight seen from a landing): nothing
   // to register against, so the motion prior places it while it is fresh.
   const bool dead_reckoned = reg.within == 0 && (with_odometry || since_accept_s <= config_.motion.max_prediction_s);
@@ -250,7 +260,9 @@ bool Tracker::reseed(const Observation& obs, const std::string& why) {
 // Merges a registered observation into the map and keeps the pose history of
 // the velocity window.
 void Tracker::accept(const Observation& obs, const Pose4& pose) {
-  merge(map_, observed_steps(obs, pose), pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
+  const std::vector<ObservedStep> observed = observed_steps(obs, pose);
+  merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
+  note_floor(obs, observed);
   reconstruct_occluded_steps(map_, config_.reconstruction, config_.stair, config_.confirmation.min_confirmations,
                              config_.merge.max_model_steps);
   accepted_.push_back({obs.source_utime, pose, to_base_m(obs)});
@@ -263,6 +275,29 @@ void Tracker::accept(const Observation& obs, const Pose4& pose) {
 void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid) {
   fill_model(map_, pose, camera_valid, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
              model_);
+}
+
+// The level the lowest seen step stands on is a floor if it is deeper than any
+// tread and no level in view lies below it; one rise below is all a step's own
+// rise says (a tread lies there when the steps before it are hidden, and a
+// table top beside the flight made it look deep). Only a floor seen under the
+// model's first step makes what lies before that step known.
+void Tracker::note_floor(const Observation& obs, const std::vector<ObservedStep>& observed) {
+  if (map_.empty() || observed.empty()) return;
+  for (size_t i = 1; i < map_.steps.size(); ++i) map_.steps[i].on_seen_floor = false;  // a step went in below
+  const int foot = foot_plane(obs, config_.registration);
+  if (foot < 0 || obs.planes[foot].extent_m <= config_.stair.landing_min_depth_m) return;
+  const double below = obs.planes[foot].centroid.z() -
+                       config_.registration.foot_max_offset_rise_fraction * typical_riser_m(map_, config_.stair);
+  for (const Plane& p : obs.planes)
+    if ((p.kind == PlaneKind::Tread || p.kind == PlaneKind::Landing) && p.centroid.z() < below) return;
+  const ObservedStep& lowest = *std::min_element(observed.begin(), observed.end(), [](const ObservedStep& a, const ObservedStep& b) {
+    return a.nosing_m.z() < b.nosing_m.z();
+  });
+  MapStep& first = map_.steps.front();
+  if (std::abs(lowest.x() - first.x()) < config_.merge.match_tread_fraction * typical_tread_m(map_, config_.stair) &&
+      std::abs(lowest.z() - first.z()) < config_.merge.match_riser_fraction * typical_riser_m(map_, config_.stair))
+    first.on_seen_floor = true;
 }
 
 }  // namespace stairs

@@ -7,6 +7,7 @@
 #include "common/types.hpp"
 #include "tracker/config.hpp"
 #include "tracker/direction.hpp"
+#include "tracker/merge.hpp"
 #include "tracker/odometry_prior.hpp"
 #include "tracker/pose.hpp"
 #include "tracker/stair_map.hpp"
@@ -45,6 +46,8 @@ class Tracker {
                       const std::string& why);
   bool reseed(const Observation& obs, const std::string& why);
   void accept(const Observation& obs, const Pose4& pose);
+  // Marks the model's first step as standing on a seen floor (tracker.cpp).
+  void note_floor(const Observation& obs, const std::vector<ObservedStep>& observed);
   Pose4 with_observed_height(const Observation& obs, Pose4 pose) const;
   Pose4 predict(int64_t utime, const Eigen::Vector3d& to_base_m) const;
   Eigen::Vector3d to_base_m(const Observation& obs) const;

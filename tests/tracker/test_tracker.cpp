@@ -6,6 +6,7 @@
 #include "tracker/config.hpp"
 #include "tracker/merge.hpp"
 #include "tracker/model_output.hpp"
+#include "tracker/registration.hpp"
 #include "tracker/tracker.hpp"
 
 #include <gtest/gtest.h>
@@ -241,6 +242,113 @@ TEST(Tracker, ARelocalisationMustRestOnRisersOrNosings) {
   // The same frame with its risers relocalises.
   const StairModel& ok = tracker.update(maker.make(cams[46], 46 * 33333));
   EXPECT_EQ(ok.observations_fused, fused + 1) << ok.status;
+}
+
+// A level as perception sees it, `rise_below` under the lowest step's nosing:
+// going down beyond that step (the floor at a flight's foot), going up before
+// it, from `gap` short of its riser to 1.5 m back.
+void add_level(Observation& obs, double rise_below, double gap = 0.02) {
+  const Step* low = &obs.steps.front();
+  for (const Step& s : obs.steps)
+    if (s.nosing_m.z() < low->nosing_m.z()) low = &s;
+  const Eigen::Vector3f n = low->nosing_m.cast<float>();
+  const float sign = obs.direction == Direction::Down ? 1.0f : -1.0f;
+  Plane p;
+  p.kind = PlaneKind::Landing;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 10; ++j)
+      p.points.emplace_back(n.x() + sign * (static_cast<float>(gap) + 0.075f * i), -0.5f + 0.1f * j,
+                            n.z() - static_cast<float>(rise_below));
+  p.centroid = Eigen::Vector3f(n.x() + sign * (static_cast<float>(gap) + 0.075f * 9.5f), 0.0f,
+                               n.z() - static_cast<float>(rise_below));
+  p.extent_m = 1.5f;
+  p.support = static_cast<int>(p.points.size());
+  obs.planes.push_back(p);
+}
+void add_floor_beyond_lowest_step(Observation& obs) { add_level(obs, 0.17); }
+
+// A robot tipping over a nosing moves its camera half a step in one frame,
+// beyond ICP's reach from the constant-velocity prior. Going down only the
+// nosings fix the position along the stair, and a shift by a whole step fits
+// them as well: the floor at the flight's foot tells the two apart. The camera
+// was placed one step up for the rest of a robot's descent.
+TEST(Tracker, AJumpOfHalfAStepDownTheFlightIsPlacedByTheFloorAtItsFoot) {
+  ObservationMaker maker(kStair, 8);
+  Tracker tracker;
+  const auto cams = walk(kStair, false, 0.3, 30.0);
+  // Down to above step 5, the foot in view from the start.
+  size_t k = 0;
+  for (; cams[k].position_m.x() > kStair.nosing_x(5) + 0.1; ++k) {
+    Observation obs = maker.make(cams[k], static_cast<int64_t>(k) * 33333);
+    if (!obs.steps.empty()) add_floor_beyond_lowest_step(obs);
+    tracker.update(obs);
+  }
+  ASSERT_EQ(tracker.model().flights.size(), 1u);
+  ASSERT_EQ(tracker.model().flights[0].steps.size(), kStair.riser_m.size()) << tracker.model().status;
+  // Half a tread (14 cm) further down in one frame; the prior expects 1 cm.
+  const size_t jump = k + 14;
+  Observation obs = maker.make(cams[jump], static_cast<int64_t>(k) * 33333);
+  add_floor_beyond_lowest_step(obs);
+  const StairModel& m = tracker.update(obs);
+  ASSERT_TRUE(m.camera_valid) << m.status;
+  const Eigen::Vector3d& c = cams[jump].position_m;
+  const double z0 = m.flights[0].steps[0].nosing_m.z() - kStair.nosing_z(0);  // the model's frame vs the stair's
+  EXPECT_NEAR(m.camera_position_m.x() - m.flights[0].steps[0].nosing_m.x(), c.x() - kStair.nosing_x(0), 0.04)
+      << m.status;
+  EXPECT_NEAR(m.camera_position_m.z() - z0, c.z(), 0.04) << m.status;
+}
+
+// The level the lowest seen step stands on joins registration only where it
+// reaches that step's riser: a table top at the height of the floor, 0.6 m in
+// front of a flight, is no floor of it.
+TEST(TrackerRegistration, TheFootIsTheLevelThatReachesTheLowestRiser) {
+  ObservationMaker maker(kStair, 9);
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  Observation obs = maker.make(cams[10], 10 * 33333);
+  ASSERT_GE(obs.steps.size(), 2u);
+  const RegistrationConfig c;
+  EXPECT_EQ(foot_plane(obs, c), -1);
+  const size_t planes = obs.planes.size();
+  add_level(obs, 0.17, 0.6);
+  EXPECT_EQ(foot_plane(obs, c), -1) << "a table top short of the riser";
+  add_level(obs, 0.30);
+  EXPECT_EQ(foot_plane(obs, c), -1) << "a level 13 cm off";
+  const size_t treads = registration_input(obs, c).tread_points.size();
+  add_level(obs, 0.17);
+  EXPECT_EQ(foot_plane(obs, c), static_cast<int>(planes) + 2);
+  EXPECT_GT(registration_input(obs, c).tread_points.size(), treads) << "the floor's points join the treads'";
+}
+
+// Before the model's first step the camera stands on what that step stands on,
+// and one rise below is all the step's own rise says: a tread lies there when
+// the steps before it are hidden (a cluttered flight put a hand-held camera 35 cm
+// low over a "floor" that was its second tread). Height and step beneath are
+// known there only once a floor was seen under the first step: deeper than any
+// tread, and no level in view below it.
+TEST(Tracker, BeforeTheFirstStepTheHeightIsKnownOnlyOverASeenFloor) {
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  auto run = [&](double floor_below, bool lower_level) {
+    ObservationMaker maker(kStair, 10);
+    Tracker tracker;
+    int known = 0, frames = 0;
+    for (size_t k = 0; k < cams.size() && cams[k].position_m.x() < -0.3; ++k) {
+      Observation obs = maker.make(cams[k], static_cast<int64_t>(k) * 33333);
+      if (!obs.steps.empty() && floor_below > 0) add_level(obs, floor_below);
+      if (!obs.steps.empty() && lower_level) add_level(obs, 2 * floor_below + 0.01, 0.5);
+      const StairModel& m = tracker.update(obs);
+      if (!m.camera_valid) continue;
+      ++frames;
+      if (!m.camera_beneath_known) continue;
+      ++known;
+      EXPECT_EQ(m.camera_step_index, -1) << k;
+      EXPECT_NEAR(m.camera_height_m, cams[k].position_m.z(), 0.03) << k;
+    }
+    EXPECT_GT(frames, 20);
+    return known;
+  };
+  EXPECT_EQ(run(0.0, false), 0) << "no level seen under the first step";
+  EXPECT_GT(run(0.17, false), 20) << "the floor seen";
+  EXPECT_EQ(run(0.17, true), 0) << "a level below it: more steps before, hidden";
 }
 
 TEST(Tracker, OutOfOrderObservationsAreDroppedAndCounted) {
