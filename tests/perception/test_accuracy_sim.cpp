@@ -118,6 +118,9 @@ TEST(PerceptionSimAccuracy, DescendingHeightOnlyAboveTheSurfaceBeneath) {
     ++heights;
     right += std::abs(*obs.camera.height_m - walk.truth(i, img).height_m) <= 0.03 ? 1 : 0;
   }
+  // Hand-held at 1.45 m and pitched 40 deg down, the view starts about 0.8 m ahead: the surface
+  // beneath is never in it, so today no height is given (0 of 0). The test fails on any height
+  // that is given and wrong, which is what it guards (2026-11-30: 1 to 6 steps off).
   std::printf("straight_down: %d of %d heights within 3 cm\n", right, heights);
   EXPECT_EQ(right, heights);
 }
