@@ -125,6 +125,13 @@ int foot_plane(const Observation& obs, const RegistrationConfig& c) {
   return best;
 }
 
+RegistrationInput level_points(const Observation& obs, const RegistrationConfig& c) {
+  RegistrationInput in;
+  for (const Plane& p : obs.planes)
+    if (p.kind == PlaneKind::Tread || p.kind == PlaneKind::Landing) sample(p, c.points_per_plane, in.tread_points);
+  return in;
+}
+
 RegistrationInput registration_input(const Observation& obs, const RegistrationConfig& c) {
   RegistrationInput in;
   for (const Step& s : obs.steps) {

@@ -27,6 +27,9 @@ struct RegistrationInput {
 // stair; -1 if none.
 int foot_plane(const Observation& obs, const RegistrationConfig& c);
 
+// Every level in view (tread and landing planes) as tread points: a frame without steps.
+RegistrationInput level_points(const Observation& obs, const RegistrationConfig& c);
+
 // The steps' planes and nosings, and the level the lowest step stands on.
 RegistrationInput registration_input(const Observation& obs, const RegistrationConfig& c);
 

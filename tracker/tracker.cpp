@@ -158,11 +158,23 @@ void Tracker::drop_if_lost_long(const Observation& obs, bool with_odometry) {
 
 // Perception's height over the surface beneath corrects the prior's z (constant velocity would carry
 // a flight's slope across a landing), unless it is a riser off: that surface may be the next level.
+// Without it the levels in view do: on the model's treads they fix the height wherever along them
+// the camera is (x stays the prior's). Frames without steps, placed by the prior, were 2.5 cm off in
+// height on average against 0.4 cm for registered ones (randomised walks, tenth session).
 Pose4 Tracker::with_observed_height(const Observation& obs, Pose4 pose) const {
-  if (!obs.camera.valid || !obs.camera.height_m) return pose;
-  const double z = surface_z_m(map_, pose.t_m.x(), config_.stair) + *obs.camera.height_m;
-  if (std::abs(z - pose.t_m.z()) < config_.motion.observed_height_max_riser_fraction * typical_riser_m(map_, config_.stair))
-    pose.t_m.z() = z;
+  if (!obs.camera.valid || map_.empty()) return pose;
+  const double max_dz = config_.motion.observed_height_max_riser_fraction * typical_riser_m(map_, config_.stair);
+  if (obs.camera.height_m) {
+    const double z = surface_z_m(map_, pose.t_m.x(), config_.stair) + *obs.camera.height_m;
+    if (std::abs(z - pose.t_m.z()) < max_dz) pose.t_m.z() = z;
+    return pose;
+  }
+  const RegistrationInput levels = level_points(obs, config_.registration);
+  if (levels.tread_points.empty()) return pose;
+  const Registration reg = register_to_map(levels, map_, pose, config_.registration, config_.stair);
+  if (reg.within > 0 && reg.inlier_ratio >= config_.motion.min_inlier_ratio &&
+      std::abs(reg.pose.t_m.z() - pose.t_m.z()) < max_dz)
+    pose.t_m.z() = reg.pose.t_m.z();
   return pose;
 }
 

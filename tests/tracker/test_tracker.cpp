@@ -351,6 +351,30 @@ TEST(Tracker, BeforeTheFirstStepTheHeightIsKnownOnlyOverASeenFloor) {
   EXPECT_EQ(run(0.17, true), 0) << "a level below it: more steps before, hidden";
 }
 
+// A frame without steps (perception refuted them, or none is in view) is placed
+// by the motion prior, whose height drifts with every bob of a walker's head:
+// the levels in view on the model fix it (x stays the prior's). Frames placed so
+// were 2.5 cm off in height on average, registered ones 0.4 cm.
+TEST(Tracker, AFrameWithoutStepsTakesItsHeightFromTheLevelsInView) {
+  ObservationMaker maker(kStair, 11);
+  Tracker tracker;
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  size_t k = 0;
+  for (; cams[k].position_m.x() < kStair.nosing_x(2) + 0.1; ++k)
+    tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  ASSERT_TRUE(tracker.model().camera_valid);
+  CameraState raised = cams[k];
+  raised.position_m.z() += 0.06;  // a bob the prior does not know of
+  Observation obs = maker.make(raised, static_cast<int64_t>(k) * 33333);
+  ASSERT_FALSE(obs.planes.empty());
+  obs.steps.clear();
+  obs.camera.height_m.reset();
+  const StairModel& m = tracker.update(obs);
+  ASSERT_TRUE(m.camera_valid) << m.status;
+  ASSERT_TRUE(m.camera_beneath_known) << m.status;
+  EXPECT_NEAR(m.camera_height_m, raised.position_m.z() - kStair.surface_z(raised.position_m.x()), 0.015) << m.status;
+}
+
 TEST(Tracker, OutOfOrderObservationsAreDroppedAndCounted) {
   ObservationMaker maker(kStair, 5);
   Tracker tracker;
