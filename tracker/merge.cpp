@@ -84,6 +84,11 @@ double distance(const ObservedStep& o, const MapStep& m, double riser, double tr
 
 }  // namespace
 
+bool matches(const StairMap& map, const ObservedStep& o, const MapStep& m, const MergeConfig& c,
+             const StairPriorConfig& stair) {
+  return distance(o, m, typical_riser_m(map, stair), typical_tread_m(map, stair), c) < 1e9;
+}
+
 bool agrees_where_it_overlaps(const StairMap& map, const std::vector<ObservedStep>& observed, const MergeConfig& c,
                               const StairPriorConfig& stair) {
   if (map.empty()) return true;

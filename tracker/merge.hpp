@@ -35,6 +35,10 @@ std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& po
 bool agrees_where_it_overlaps(const StairMap& map, const std::vector<ObservedStep>& observed, const MergeConfig& c,
                               const StairPriorConfig& stair);
 
+// Whether an observed step matches a model step within merge's tolerances.
+bool matches(const StairMap& map, const ObservedStep& o, const MapStep& m, const MergeConfig& c,
+             const StairPriorConfig& stair);
+
 // Returns the number of new steps inserted.
 int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4& pose, const MergeConfig& c,
           const StairPriorConfig& stair, double min_distance_m);

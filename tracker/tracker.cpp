@@ -306,10 +306,7 @@ void Tracker::note_floor(const Observation& obs, const std::vector<ObservedStep>
   const ObservedStep& lowest = *std::min_element(observed.begin(), observed.end(), [](const ObservedStep& a, const ObservedStep& b) {
     return a.nosing_m.z() < b.nosing_m.z();
   });
-  MapStep& first = map_.steps.front();
-  if (std::abs(lowest.x() - first.x()) < config_.merge.match_tread_fraction * typical_tread_m(map_, config_.stair) &&
-      std::abs(lowest.z() - first.z()) < config_.merge.match_riser_fraction * typical_riser_m(map_, config_.stair))
-    first.on_seen_floor = true;
+  if (matches(map_, lowest, map_.steps.front(), config_.merge, config_.stair)) map_.steps.front().on_seen_floor = true;
 }
 
 }  // namespace stairs
