@@ -52,6 +52,15 @@ bool usable(const DepthImage& f, std::string& why) {
   return true;
 }
 
+// Why a frame shows no staircase when verification refuted nothing: the grammar's evidence
+// fell short (issue 14: "report no staircase and say why in the observation's status").
+std::string shortfall(size_t levels, int chain_steps, size_t steps, int min_steps) {
+  if (levels == 0) return "no level surface in view";
+  if (chain_steps == 0) return "no two levels in view a plausible step apart (DIN 18065)";
+  return std::to_string(steps) + " step" + (steps == 1 ? "" : "s") + " in view, a staircase needs " +
+         std::to_string(min_steps);
+}
+
 }  // namespace
 
 Pipeline::Pipeline(PerceptionConfig cfg) : cfg_(cfg), imu_(cfg_.imu) {}
@@ -117,6 +126,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   std::vector<Step> steps = steps_from_chain(ps, chain, cfg_.stair);
   clock.mark("grammar");
   reconstruct(ps, chain, steps, cfg_.stair);
+  const size_t n_reconstructed = steps.size();
   clock.mark("reconstruction");
   std::string refuted;
   if (static_cast<int>(steps.size()) >= cfg_.stair.min_steps) {
@@ -136,7 +146,9 @@ Observation Pipeline::process(const DepthImage& frame) {
     if (d > 0) obs.camera.distance_m = d;
     obs.status = refuted.empty() ? "ok" : "ok; verification dropped " + refuted;
   } else {
-    obs.status = refuted.empty() ? "no staircase" : "no staircase: verification: " + refuted;
+    obs.status = "no staircase: " + (refuted.empty() ? shortfall(levels.size(), chain.steps(), n_reconstructed,
+                                                                 cfg_.stair.min_steps)
+                                                       : "verification: " + refuted);
   }
   if (!fused.note.empty()) obs.status += "; " + fused.note;
   obs.planes = std::move(ps.planes);

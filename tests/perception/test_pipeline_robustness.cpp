@@ -1,5 +1,6 @@
 // Valid output on every frame, whatever the input: no crash, no NaN.
 #include "perception/pipeline.hpp"
+#include "synthetic.hpp"
 
 #include <gtest/gtest.h>
 
@@ -74,6 +75,19 @@ TEST(PerceptionRobustness, RandomNoiseAndHugeValues) {
   img.depth_scale = 1000.0;  // kilometres per unit: everything beyond range
   for (auto& v : img.depth) v = 60000;
   expect_finite(p.process(img));
+}
+
+// Unknown is said with its reason (issue 14): the floor alone, and a single step (a curb), are
+// no staircase, and the status tells which evidence was missing.
+TEST(PerceptionRobustness, NoStaircaseSaysWhatWasMissing) {
+  Pipeline p;
+  const Observation floor_only = p.process(test::render_stairs(640, 480, -35, 0, 1.0, 0));
+  EXPECT_EQ(floor_only.direction, Direction::None);
+  EXPECT_EQ(floor_only.status, "no staircase: no two levels in view a plausible step apart (DIN 18065)");
+  Pipeline q;
+  const Observation curb = q.process(test::render_stairs(640, 480, -35, 0, 1.0, 1, 1.5, 0.15, 2.0));
+  EXPECT_EQ(curb.direction, Direction::None);
+  EXPECT_EQ(curb.status, "no staircase: 1 step in view, a staircase needs 2");
 }
 
 }  // namespace
