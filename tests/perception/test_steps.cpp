@@ -195,6 +195,22 @@ TEST(PerceptionSteps, SyntheticAscendingStairsEndToEnd) {
   for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(o.stages[i].name, names[i]);
 }
 
+// Near the flight the first riser's foot is below the view and the lowest level in view is the
+// first tread: that step is completed from its riser (reconstruction). Its nosing lies at the
+// riser's face, as every other step's: from its tread's trimmed front it lay a centimetre or more
+// behind, its tread came out short and the steps beside it disagreed (issue 14).
+TEST(PerceptionReconstruction, TheNearestStepsNosingIsItsRisersFace) {
+  constexpr double kFirstRiser = 0.6, kTread = 0.28;
+  Pipeline p;
+  const Observation o = p.process(test::render_stairs(640, 480, -35, 0, 1.0, 4, kFirstRiser, 0.17, kTread));
+  ASSERT_EQ(o.direction, Direction::Up) << o.status;
+  ASSERT_GE(o.steps.size(), 3u);
+  for (size_t k = 0; k < o.steps.size(); ++k) {
+    EXPECT_NEAR(o.steps[k].nosing_m.x(), kFirstRiser + k * kTread, 0.005) << "step " << k;
+    if (k + 1 < o.steps.size()) EXPECT_NEAR(*o.steps[k].tread_depth_m, kTread, 0.005) << "step " << k;
+  }
+}
+
 TEST(PerceptionSteps, SingleCurbIsNoStaircase) {
   Pipeline p;
   const Observation o = p.process(test::render_stairs(640, 480, -35, 0, 1.0, 1, 1.3, 0.15, 5.0));
