@@ -18,6 +18,9 @@ void validate(const TrackerConfig& c) {
   require(c.direction.majority <= c.direction.window, "direction.majority", "at most direction.window");
   require(c.motion.predict_camera_s <= c.motion.max_prediction_s, "motion.predict_camera_s",
           "at most motion.max_prediction_s");
+  require(c.overhang.face_band_from < c.overhang.face_band_to &&
+              c.overhang.face_band_to < 1 - c.overhang.top_band_fraction,
+          "overhang.face_band_from", "below overhang.face_band_to, itself below 1 - overhang.top_band_fraction");
 }
 
 TrackerConfig tracker_config_from_json(const nlohmann::json& object, const std::string& file) {

@@ -155,6 +155,31 @@ struct MergeConfig {
   }
 };
 
+// --- overhang: the nosing's edge before the riser's face (tracker/nosing_overhang.hpp)
+struct OverhangConfig {
+  double top_band_fraction = 0.2;  // of a riser's seen height below the nosing: the slab's front face (a 2-5 cm
+                                   // slab on a 15-20 cm riser fills most of it)
+  double face_band_from = 0.25;    // ... and the band between these fractions is its face (above a concave
+  double face_band_to = 0.7;       // corner's multipath at its foot, below the slab)
+  double top_tolerance_m = 0.03;   // m; the plane's top this close to the nosing's height: the slab is in view
+  double min_height_m = 0.08;      // m; less of a riser seen says nothing of its face
+  int min_points = 5;              // plane sample points in each band
+  int min_steps = 2;               // steps with a measured overhang before the flight has one
+  double max_m = 0.06;             // m; a larger offset is no nosing (DIN 18065: overhang <= 5 cm)
+
+  template <class V>
+  void visit(V& v) {
+    v("top_band_fraction", top_band_fraction, 0.01, 0.5);
+    v("face_band_from", face_band_from, 0.0, 1.0);
+    v("face_band_to", face_band_to, 0.0, 1.0);
+    v("top_tolerance_m", top_tolerance_m, 0.0, 1.0);
+    v("min_height_m", min_height_m, 0.0, 10.0);
+    v("min_points", min_points, 1, 100000);
+    v("min_steps", min_steps, 1, 1000);
+    v("max_m", max_m, 0.0, 1.0);
+  }
+};
+
 // --- reconstruction: occluded steps filled in the model (thesis 4.5 applied to the model)
 struct ModelReconstructionConfig {
   int max_gap_steps = 3;    // at most this many missing steps filled between two seen ones
@@ -204,6 +229,7 @@ struct TrackerConfig {
   OdometryConfig odometry;
   RelocalisationConfig relocalisation;
   MergeConfig merge;
+  OverhangConfig overhang;
   ModelReconstructionConfig reconstruction;
   DirectionConfig direction;
   LifecycleConfig lifecycle;
@@ -218,6 +244,7 @@ struct TrackerConfig {
     v.section("odometry", odometry);
     v.section("relocalisation", relocalisation);
     v.section("merge", merge);
+    v.section("overhang", overhang);
     v.section("reconstruction", reconstruction);
     v.section("direction", direction);
     v.section("lifecycle", lifecycle);

@@ -51,6 +51,7 @@ void update(MapStep& m, const ObservedStep& o, const Pose4& pose, const MergeCon
   else m.edge_z_m.add(o.nosing_m.z(), cap);
   m.tread_z_settled = m.tread_z_m.count >= c.min_tread_plane_observations;
   if (o.riser_height_m) m.riser_height_m.add(*o.riser_height_m, cap);
+  if (o.overhang_m) m.overhang_m.add(*o.overhang_m, cap);
   if (o.tread_far_x_m) m.tread_far_x_m = std::max(m.tread_far_x_m, *o.tread_far_x_m);
   if (o.y_min_m) m.y_min_m.add(*o.y_min_m, cap);
   if (o.y_max_m) m.y_max_m.add(*o.y_max_m, cap);

@@ -19,6 +19,7 @@ struct StairPriorConfig;
 // One observed step expressed in the model frame W.
 struct ObservedStep {
   std::optional<double> riser_x_m, tread_z_m, riser_height_m, tread_far_x_m;
+  std::optional<double> overhang_m;  // the nosing's edge before the riser's face (nosing_overhang.hpp)
   Eigen::Vector3d nosing_m = Eigen::Vector3d::Zero();
   std::optional<double> y_min_m, y_max_m;
   const Plane* riser = nullptr;

@@ -47,7 +47,7 @@ std::vector<const MapStep*> published_steps(const StairMap& map, const Confirmat
 
 // Published step i (relative to `origin`), its riser and tread planes appended to `planes`.
 Step model_step(const std::vector<const MapStep*>& steps, size_t i, double first_riser, double tread_typ,
-                const Eigen::Vector3d& origin, double camera_y, const StairPriorConfig& c,
+                const Eigen::Vector3d& origin, double camera_y, double overhang_m, const StairPriorConfig& c,
                 std::vector<Plane>& planes) {
   const MapStep& s = *steps[i];
   Step out;
@@ -66,7 +66,9 @@ Step model_step(const std::vector<const MapStep*>& steps, size_t i, double first
   if (known_tread) out.tread_depth_m = tread;
   out.landing = known_tread && tread > c.landing_min_depth_m;
   out.width_m = width;
-  out.nosing_m = Eigen::Vector3d(s.x(), y_left - 0.5 * width, s.z()) - origin;
+  // The nosing is the tread's edge: a seen riser's face stands the overhang behind it.
+  const double nosing_x = s.riser_x_m.known() ? s.x() - overhang_m : s.x();
+  out.nosing_m = Eigen::Vector3d(nosing_x, y_left - 0.5 * width, s.z()) - origin;
   out.confirmations = s.confirmations;
   const PlaneSource source = s.reconstructed ? PlaneSource::Reconstructed : PlaneSource::Segmented;
   out.riser_plane = static_cast<int>(planes.size());
@@ -139,7 +141,7 @@ void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const M
 
 void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
                 const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
-                const StairPriorConfig& stair, const MountConfig& mount, StairModel& out) {
+                const StairPriorConfig& stair, const MountConfig& mount, double overhang_m, StairModel& out) {
   out.flights.clear();
   out.planes.clear();
   const std::vector<const MapStep*> steps = published_steps(map, c, out.confirmed);
@@ -154,11 +156,13 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
   const double y_mid = first.y_min_m.known() && first.y_max_m.known()
                            ? 0.5 * (first.y_min_m.value + first.y_max_m.value)
                            : camera.t_m.y();
-  const Eigen::Vector3d origin(first.x(), y_mid, first.z() - first_riser);
+  // Beneath the first nosing, as the model's first step's nosing lies at x = 0 (../shared/DESIGN.md).
+  const double first_nosing_x = first.riser_x_m.known() ? first.x() - overhang_m : first.x();
+  const Eigen::Vector3d origin(first_nosing_x, y_mid, first.z() - first_riser);
   const double tread_typ = typical_tread_m(map, stair);
   Flight flight;
   for (size_t i = 0; i < steps.size(); ++i) {
-    const Step step = model_step(steps, i, first_riser, tread_typ, origin, camera.t_m.y(), stair, out.planes);
+    const Step step = model_step(steps, i, first_riser, tread_typ, origin, camera.t_m.y(), overhang_m, stair, out.planes);
     flight.width_m = std::max(flight.width_m, step.width_m);
     flight.steps.push_back(step);
     // A landing ends its flight unless it is the top of the model.

@@ -16,10 +16,11 @@ struct StairPriorConfig;
 // Fills out.flights, out.planes, the camera fields and, with a configured mount, the base fields
 // (issue 15: outputs in the robot's base frame); leaves state, counters, direction and quality to
 // the caller. `camera` is the gravity-aligned camera frame -> W pose; `gravity_rotation` is the
-// observation's optical -> gravity.
+// observation's optical -> gravity. `overhang_m`: the nosing's edge stands this far before the face of
+// a seen riser (nosing_overhang.hpp); the published nosings and the step beneath use the edge.
 void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
                 const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
-                const StairPriorConfig& stair, const MountConfig& mount, StairModel& out);
+                const StairPriorConfig& stair, const MountConfig& mount, double overhang_m, StairModel& out);
 
 // The model's steps, bottom to top, in its camera's gravity-aligned frame: what the tracker knows
 // around the camera, out of view included. Empty when the camera is not valid.

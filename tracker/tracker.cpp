@@ -2,6 +2,7 @@
 
 #include "tracker/merge.hpp"
 #include "tracker/model_output.hpp"
+#include "tracker/nosing_overhang.hpp"
 #include "tracker/reconstruction.hpp"
 #include "tracker/registration.hpp"
 #include "tracker/relocalisation.hpp"
@@ -62,7 +63,7 @@ bool Tracker::seed(const Observation& obs) {
   if (!yaw) return false;
   Pose4 pose;
   pose.yaw_rad = *yaw;
-  const std::vector<ObservedStep> observed = observed_steps(obs, pose);
+  const std::vector<ObservedStep> observed = observed_with_overhang(obs, pose);
   merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
   if (map_.empty()) return false;
   note_floor(obs, observed);
@@ -73,6 +74,14 @@ bool Tracker::seed(const Observation& obs) {
   model_.registration_inlier_ratio = 0.0;
   publish(obs, pose, true);
   return true;
+}
+
+// The observation's steps in the model, each riser's overhang measured where its slab is in view.
+std::vector<ObservedStep> Tracker::observed_with_overhang(const Observation& obs, const Pose4& pose) const {
+  std::vector<ObservedStep> observed = observed_steps(obs, pose);
+  for (ObservedStep& o : observed)
+    if (o.riser) o.overhang_m = riser_overhang_m(*o.riser, pose.isometry(), o.nosing_m.z(), config_.overhang);
+  return observed;
 }
 
 bool Tracker::odometry_covers(int64_t utime) const {
@@ -272,7 +281,7 @@ bool Tracker::reseed(const Observation& obs, const std::string& why) {
 // Merges a registered observation into the map and keeps the pose history of
 // the velocity window.
 void Tracker::accept(const Observation& obs, const Pose4& pose) {
-  const std::vector<ObservedStep> observed = observed_steps(obs, pose);
+  const std::vector<ObservedStep> observed = observed_with_overhang(obs, pose);
   merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
   note_floor(obs, observed);
   reconstruct_occluded_steps(map_, config_.reconstruction, config_.stair, config_.confirmation.min_confirmations,
@@ -286,6 +295,7 @@ void Tracker::accept(const Observation& obs, const Pose4& pose) {
 
 void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid) {
   fill_model(map_, pose, camera_valid, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
+             flight_overhang_m(map_, config_.overhang),
              model_);
 }
 

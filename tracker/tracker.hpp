@@ -52,6 +52,7 @@ class Tracker {
   Pose4 predict(int64_t utime, const Eigen::Vector3d& to_base_m) const;
   Eigen::Vector3d to_base_m(const Observation& obs) const;
   bool odometry_covers(int64_t utime) const;
+  std::vector<ObservedStep> observed_with_overhang(const Observation& obs, const Pose4& pose) const;
   void publish(const Observation& obs, const Pose4& pose, bool camera_valid);
 
   TrackerConfig config_;

@@ -27,7 +27,7 @@ std::string print(const eval::ErrorStats& e) { return e.mean_abs ? std::to_strin
 
 class SensorAccuracy : public ::testing::TestWithParam<Walk> {};
 
-TEST_P(SensorAccuracy, ModelHoldsEveryStepWithinHalfACentimetreAndNoFalseStep) {
+TEST_P(SensorAccuracy, EveryStepWithinHalfACentimetreNoFalseStepAndTheCameraWithinTwo) {
   const Walk& w = GetParam();
   const fs::path log = fs::path(STAIRS_BINARY_DIR) / "sensor-logs" / (std::string(w.name) + ".lcmlog");
   fs::create_directories(log.parent_path());
@@ -48,6 +48,11 @@ TEST_P(SensorAccuracy, ModelHoldsEveryStepWithinHalfACentimetreAndNoFalseStep) {
   ASSERT_TRUE(s.riser_error_cm.mean_abs && s.tread_error_cm.mean_abs) << w.name;
   EXPECT_LE(*s.riser_error_cm.mean_abs, 0.5) << w.name;
   EXPECT_LE(*s.tread_error_cm.mean_abs, 0.5) << w.name;
+  // Where the camera is along the stair (issue 15), to within 2 cm on average. The model's nosings
+  // stood at the risers' faces, 3 cm behind a nosing overhang's edge: the steep ascents were 2.4-3.0
+  // cm off and took the wrong step beneath near each edge.
+  ASSERT_TRUE(s.tracked_position_error_cm.mean_abs) << w.name;
+  EXPECT_LE(*s.tracked_position_error_cm.mean_abs, 2.0) << w.name;
 }
 
 #define STAIRS_WALKS(sensor)                                                                                   \
