@@ -1,5 +1,6 @@
 // The published StairModel: the model's confirmed steps in the stair frame
-// (origin at the bottom of the model's own first riser), split into flights at
+// (origin on the floor beneath the model's first nosing: the foot of its first
+// riser, less a nosing overhang; nosing_overhang.hpp), split into flights at
 // landings, with planes and the camera on the stair.
 #pragma once
 
