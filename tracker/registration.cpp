@@ -132,6 +132,13 @@ RegistrationInput level_points(const Observation& obs, const RegistrationConfig&
   return in;
 }
 
+RegistrationInput planes_in_view(const Observation& obs, const RegistrationConfig& c) {
+  RegistrationInput in = level_points(obs, c);
+  for (const Plane& p : obs.planes)
+    if (p.kind == PlaneKind::Riser) sample(p, c.points_per_plane, in.riser_points);
+  return in;
+}
+
 RegistrationInput registration_input(const Observation& obs, const RegistrationConfig& c) {
   RegistrationInput in;
   for (const Step& s : obs.steps) {

@@ -49,6 +49,7 @@ class Tracker {
   // Marks the model's first step as standing on a seen floor (tracker.cpp).
   void note_floor(const Observation& obs, const std::vector<ObservedStep>& observed);
   Pose4 with_observed_height(const Observation& obs, Pose4 pose) const;
+  std::optional<Pose4> on_planes_in_view(const Observation& obs, const Pose4& prior) const;
   Pose4 predict(int64_t utime, const Eigen::Vector3d& to_base_m) const;
   Eigen::Vector3d to_base_m(const Observation& obs) const;
   bool odometry_covers(int64_t utime) const;

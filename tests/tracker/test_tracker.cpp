@@ -375,6 +375,33 @@ TEST(Tracker, AFrameWithoutStepsTakesItsHeightFromTheLevelsInView) {
   EXPECT_NEAR(m.camera_height_m, raised.position_m.z() - kStair.surface_z(raised.position_m.x()), 0.015) << m.status;
 }
 
+// From a flight's last steps perception sees one or two and finds no staircase; the motion prior
+// places those frames, and a lurch it does not know of puts the camera over the wrong step near an
+// edge. The risers in view fix x on the model (the frame is not merged).
+TEST(Tracker, AFrameWithoutStepsIsPlacedByTheRisersInView) {
+  ObservationMaker maker(kStair, 12);
+  Tracker tracker;
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  size_t k = 0;
+  for (; cams[k].position_m.x() < kStair.nosing_x(3) - 0.03; ++k)
+    tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  ASSERT_TRUE(tracker.model().camera_valid);
+  const int fused = tracker.model().observations_fused;
+  CameraState lurched = cams[k];
+  lurched.position_m.x() = kStair.nosing_x(3) + 0.03;  // 6 cm beyond where the walk was
+  Observation obs = maker.make(lurched, static_cast<int64_t>(k) * 33333);
+  obs.steps.clear();
+  obs.camera.height_m.reset();
+  size_t risers = 0;
+  for (const Plane& p : obs.planes) risers += p.kind == PlaneKind::Riser;
+  ASSERT_GE(risers, 1u);
+  const StairModel& m = tracker.update(obs);
+  ASSERT_TRUE(m.camera_valid) << m.status;
+  EXPECT_NEAR(m.camera_height_m, lurched.position_m.z() - kStair.surface_z(lurched.position_m.x()), 0.015)
+      << m.status << ": the step beneath";
+  EXPECT_EQ(m.observations_fused, fused) << "not merged";
+}
+
 TEST(Tracker, OutOfOrderObservationsAreDroppedAndCounted) {
   ObservationMaker maker(kStair, 5);
   Tracker tracker;
