@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace stairs {
 
@@ -23,45 +24,43 @@ const PlaneExtent* lowest_at_view_edge(const PlaneSet& ps, double below_rad, con
   return lowest;
 }
 
-// How far the point beneath the camera (s = t = 0) lies outside an extent; 0 inside it.
-float outside_m(const PlaneExtent& e) {
-  const float ds = std::max({e.s_min, -e.s_max, 0.0f}), dt = std::max({e.t_min, -e.t_max, 0.0f});
-  return std::hypot(ds, dt);
-}
-
-// The point straight beneath is in view: the tread-like surface below the camera whose extent holds
-// it, or, when none does, comes nearest it within the margin (trimmed extents end short of the
-// image's border). Not the lowest one: a camera tipping over a nosing has the next tread down within
-// a few centimetres ahead, and took it for its ground (18 cm off on a robot descent). Two surfaces at
-// different heights that both hold the point, or tie for nearest, make it unknown.
-std::optional<double> surface_straight_beneath(const PlaneSet& ps, const CameraHeightConfig& cfg) {
-  const PlaneExtent* best = nullptr;
-  float best_out = 0;
-  bool ambiguous = false;
-  for (size_t i = 0; i < ps.planes.size(); ++i) {
-    const PlaneExtent& e = ps.extents[i];
-    if (ps.planes[i].kind != PlaneKind::Tread || e.z_mean >= 0) continue;
-    const float out = outside_m(e);
-    if (out > cfg.view_edge_margin_m) continue;
-    if (!best || out < best_out) {
-      best = &e;
-      best_out = out;
-      ambiguous = false;
-    } else if (out == best_out && std::abs(best->z_mean - e.z_mean) > cfg.level_tolerance_m) {
-      ambiguous = true;
-    }
+// The point straight beneath is in view: the level of the grid's cells nearest the plumb line below
+// the camera, where cells lie around it (before and behind, left and right) and the nearest agree.
+// The planes' extents cannot tell: a robot tipping over a nosing saw the tread it stood on only as a
+// strip too small to segment, or nearer than a Kinect v2 measures, and the next tread down began a
+// few cm ahead of the plumb line (18 cm off). Cells on one side only are a surface beside the plumb
+// line, not beneath it; nearest cells on two levels straddle an edge: unknown.
+std::optional<double> height_over_cells_beneath(const NormalGrid& g, const Eigen::Matrix3f& R,
+                                                const CameraHeightConfig& cfg) {
+  std::vector<std::pair<float, float>> near;  // horizontal distance to the plumb line, height
+  Eigen::Vector2f lo(0, 0), hi(0, 0);
+  for (size_t c = 0; c < g.points.size(); ++c) {
+    if (!g.has_point[c]) continue;
+    const Eigen::Vector3f q = R * g.points[c];
+    const float d = std::hypot(q.x(), q.y());
+    if (q.z() >= 0 || d >= cfg.beneath_radius_m) continue;
+    near.emplace_back(d, q.z());
+    lo = lo.cwiseMin(q.head<2>());
+    hi = hi.cwiseMax(q.head<2>());
   }
-  if (!best || ambiguous) return std::nullopt;
-  return -static_cast<double>(best->z_mean);
+  const size_t k = static_cast<size_t>(cfg.beneath_nearest_cells);
+  if (near.size() < k || (lo.array() >= 0).any() || (hi.array() <= 0).any()) return std::nullopt;
+  std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(k), near.end());
+  std::vector<float> zs;
+  for (size_t i = 0; i < k; ++i) zs.push_back(near[i].second);
+  std::sort(zs.begin(), zs.end());
+  if (zs.back() - zs.front() > cfg.level_tolerance_m) return std::nullopt;
+  return -static_cast<double>(zs[k / 2]);
 }
 
 }  // namespace
 
-std::optional<double> camera_height(const PlaneSet& ps, const Intrinsics& K, double pitch_deg, double roll_deg,
+std::optional<double> camera_height(const PlaneSet& ps, const NormalGrid& grid, const Eigen::Matrix3f& R,
+                                    const Intrinsics& K, double pitch_deg, double roll_deg,
                                     const CameraHeightConfig& cfg, const MountConfig& mount) {
   const double below_rad = -pitch_deg * M_PI / 180.0 + std::atan((K.height - 1 - K.cy) / K.fy);
   if (below_rad <= 0) return std::nullopt;
-  if (below_rad >= M_PI / 2) return surface_straight_beneath(ps, cfg);
+  if (below_rad >= M_PI / 2) return height_over_cells_beneath(grid, R, cfg);
   // Out of view, the surface beneath may be the level that fills the image's
   // lowest row or one a riser or more below it: a landing looks like a floor,
   // and a step hides under the view (thesis 4.2). Only a mounted camera on a

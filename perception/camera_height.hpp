@@ -5,16 +5,19 @@
 
 #include "common/types.hpp"
 #include "perception/config.hpp"
+#include "perception/normals.hpp"
 #include "perception/plane_geometry.hpp"
 
 #include <optional>
 
 namespace stairs {
 
-// Height above the lowest surface spanning the point straight beneath, when in view. Otherwise
-// unknown, unless a configured mount (the top-level "mount") on a level carrier names the level
-// at its height as the ground (issue 15: unknown beats wrong; the tracker's model knows better).
-std::optional<double> camera_height(const PlaneSet& ps, const Intrinsics& K, double pitch_deg, double roll_deg,
+// Height above the surface straight beneath, when in view: the level the grid's cells (`R`: optical
+// -> gravity-aligned) show around the plumb line. Otherwise unknown, unless a configured mount (the
+// top-level "mount") on a level carrier names the level at its height as the ground (issue 15:
+// unknown beats wrong; the tracker's model knows better).
+std::optional<double> camera_height(const PlaneSet& ps, const NormalGrid& grid, const Eigen::Matrix3f& R,
+                                    const Intrinsics& K, double pitch_deg, double roll_deg,
                                     const CameraHeightConfig& cfg, const MountConfig& mount);
 
 }  // namespace stairs

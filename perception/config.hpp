@@ -227,9 +227,12 @@ struct CameraHeightConfig {
   float view_edge_margin_m = 0.1f;   // m; a surface whose near edge is this close to where the
   float view_edge_tolerance = 0.15f;  // (+ this fraction) the image's bottom row meets its height
                                       // runs on beneath the camera
-  float level_tolerance_m = 0.05f;    // m; two surfaces holding the point beneath farther apart in
-                                      // height are two levels (plane_geometry merges within 5 cm):
-                                      // which one the camera stands over is unknown
+  // With the point straight beneath in view: the grid's cells around the plumb line.
+  float beneath_radius_m = 0.05f;     // m; cells this close to the plumb line must lie on all its sides
+                                      // (a 4 px cell at 0.5 m is 1 cm)
+  int beneath_nearest_cells = 5;      // the nearest this many give the level: a few, against noise
+  float level_tolerance_m = 0.05f;    // m; nearest cells farther apart in height straddle an edge (a
+                                      // rise is >= 10 cm): which level is beneath is unknown
   // With the top-level "mount" (issue 15): out of view, the level at the mount's height below a level
   // carrier is its ground. Without one (hand-held), only a surface seen beneath counts.
   float mount_tilt_tolerance_deg = 3.0f;   // deg; pitch and roll this close to the mount's: the carrier is level
@@ -239,6 +242,8 @@ struct CameraHeightConfig {
   void visit(V& v) {
     v("view_edge_margin_m", view_edge_margin_m, 0.0f, 10.0f);
     v("view_edge_tolerance", view_edge_tolerance, 0.0f, 10.0f);
+    v("beneath_radius_m", beneath_radius_m, 0.001f, 1.0f);
+    v("beneath_nearest_cells", beneath_nearest_cells, 1, 100000);
     v("level_tolerance_m", level_tolerance_m, 0.0f, 1.0f);
     v("mount_tilt_tolerance_deg", mount_tilt_tolerance_deg, 0.0f, 45.0f);
     v("mount_height_tolerance_m", mount_height_tolerance_m, 0.0f, 1.0f);

@@ -137,7 +137,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   }
   clock.mark("verification");
   if (static_cast<int>(steps.size()) < cfg_.stair.min_steps) steps.clear();
-  obs.camera.height_m = camera_height(ps, frame.K, obs.camera.pitch_deg, obs.camera.roll_deg, cfg_.camera_height,
+  obs.camera.height_m = camera_height(ps, grid_, R, frame.K, obs.camera.pitch_deg, obs.camera.roll_deg, cfg_.camera_height,
                                      cfg_.mount);
   if (!steps.empty()) {
     obs.direction = chain.direction;

@@ -157,6 +157,22 @@ TEST(PerceptionCameraHeight, AMountNamesTheGroundOnlyAtItsHeightAndTilt) {
   EXPECT_FALSE(height(0.0f, -35.0f).has_value()) << "no mount";
 }
 
+// Looking steeply down, the point straight beneath is in view: the height is the level of the cells
+// nearest the plumb line, where cells surround it and the nearest agree (issue 15). Over a floor it
+// is known, with a step's riser 3 cm ahead too; with the plumb line at the image's edge the cells do
+// not surround it: unknown.
+TEST(PerceptionCameraHeight, StraightBeneathIsTheLevelOfTheCellsNearestThePlumbLine) {
+  const auto height = [](double pitch_deg, double first_riser_m) {
+    return Pipeline().process(test::render_stairs(640, 480, pitch_deg, 0, 0.8, 2, first_riser_m)).camera.height_m;
+  };
+  ASSERT_TRUE(height(-75, 1.0).has_value()) << "over the floor";
+  EXPECT_NEAR(*height(-75, 1.0), 0.8, 0.01);
+  ASSERT_TRUE(height(-75, 0.03).has_value()) << "a riser 3 cm ahead";
+  EXPECT_NEAR(*height(-75, 0.03), 0.8, 0.01) << "the floor, not the step ahead";
+  // 90.2 deg below the horizon at the lowest row: beneath is in view, but nothing behind it.
+  EXPECT_FALSE(height(-65.6, 1.0).has_value()) << "the plumb line at the image's lowest row";
+}
+
 TEST(PerceptionSteps, SyntheticAscendingStairsEndToEnd) {
   Pipeline p;
   const Observation o = p.process(test::render_stairs(640, 480, -35, 0, 1.0, 4, 1.3));
@@ -207,7 +223,9 @@ TEST(PerceptionReconstruction, TheNearestStepsNosingIsItsRisersFace) {
   ASSERT_GE(o.steps.size(), 3u);
   for (size_t k = 0; k < o.steps.size(); ++k) {
     EXPECT_NEAR(o.steps[k].nosing_m.x(), kFirstRiser + k * kTread, 0.005) << "step " << k;
-    if (k + 1 < o.steps.size()) EXPECT_NEAR(*o.steps[k].tread_depth_m, kTread, 0.005) << "step " << k;
+    if (k + 1 < o.steps.size()) {
+      EXPECT_NEAR(*o.steps[k].tread_depth_m, kTread, 0.005) << "step " << k;
+    }
   }
 }
 
