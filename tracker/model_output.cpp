@@ -45,6 +45,9 @@ std::vector<const MapStep*> published_steps(const StairMap& map, const Confirmat
   return steps;
 }
 
+// The step's nosing along x: the tread's edge, a seen riser's face standing the overhang behind it.
+double nosing_x_m(const MapStep& s, double overhang_m) { return s.riser_x_m.known() ? s.x() - overhang_m : s.x(); }
+
 // Published step i (relative to `origin`), its riser and tread planes appended to `planes`.
 Step model_step(const std::vector<const MapStep*>& steps, size_t i, double first_riser, double tread_typ,
                 const Eigen::Vector3d& origin, double camera_y, double overhang_m, const StairPriorConfig& c,
@@ -66,9 +69,7 @@ Step model_step(const std::vector<const MapStep*>& steps, size_t i, double first
   if (known_tread) out.tread_depth_m = tread;
   out.landing = known_tread && tread > c.landing_min_depth_m;
   out.width_m = width;
-  // The nosing is the tread's edge: a seen riser's face stands the overhang behind it.
-  const double nosing_x = s.riser_x_m.known() ? s.x() - overhang_m : s.x();
-  out.nosing_m = Eigen::Vector3d(nosing_x, y_left - 0.5 * width, s.z()) - origin;
+  out.nosing_m = Eigen::Vector3d(nosing_x_m(s, overhang_m), y_left - 0.5 * width, s.z()) - origin;
   out.confirmations = s.confirmations;
   const PlaneSource source = s.reconstructed ? PlaneSource::Reconstructed : PlaneSource::Segmented;
   out.riser_plane = static_cast<int>(planes.size());
@@ -157,8 +158,7 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
                            ? 0.5 * (first.y_min_m.value + first.y_max_m.value)
                            : camera.t_m.y();
   // Beneath the first nosing, as the model's first step's nosing lies at x = 0 (../shared/DESIGN.md).
-  const double first_nosing_x = first.riser_x_m.known() ? first.x() - overhang_m : first.x();
-  const Eigen::Vector3d origin(first_nosing_x, y_mid, first.z() - first_riser);
+  const Eigen::Vector3d origin(nosing_x_m(first, overhang_m), y_mid, first.z() - first_riser);
   const double tread_typ = typical_tread_m(map, stair);
   Flight flight;
   for (size_t i = 0; i < steps.size(); ++i) {

@@ -7,16 +7,6 @@
 
 namespace stairs {
 
-namespace {
-
-double median(std::vector<double>& v) {
-  auto m = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), m, v.end());
-  return *m;
-}
-
-}  // namespace
-
 std::optional<double> riser_overhang_m(const Plane& riser, const Eigen::Isometry3d& to_model, double nosing_z_m,
                                        const OverhangConfig& c) {
   if (riser.points.empty()) return std::nullopt;

@@ -7,14 +7,10 @@
 
 namespace stairs {
 
-namespace {
-
 double median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v[v.size() / 2];
 }
-
-}  // namespace
 
 double typical_riser_m(const StairMap& map, const StairPriorConfig& c) {
   std::vector<double> r;

@@ -53,6 +53,9 @@ struct StairMap {
   bool empty() const { return steps.empty(); }
 };
 
+// The median of a non-empty set (the upper one of an even count).
+double median(std::vector<double> v);
+
 // Typical riser height and tread depth of the model (medians of adjacent
 // steps), or the configured defaults while the model is too small.
 double typical_riser_m(const StairMap& map, const StairPriorConfig& c);
