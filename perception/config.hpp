@@ -204,6 +204,10 @@ struct GravityConfig {
   float refine_first_deg = 3.0f;  // deg; the least-squares up's first pass takes the treads this near the
                                   // consensus up (walls and risers may set it off by a degree or two)
   float fit_rms_floor_m = 0.001f;  // m; no plane's fit residual counts as smaller (depth resolution)
+  float fit_rms_floor_per_m2 = 0.0015f;  // 1/m; nor smaller than this times its depth squared: depth noise
+                                         // grows with z^2 (Kinect v1 1.5 mm at 1 m, 1.4 cm at 3 m; stereo
+                                         // worse) and is correlated there (quantised disparity), which a far
+                                         // sliver's small residual hides
   float refine_prior_fraction = 1e-5f;  // directions the treads constrain less than this fraction of their
                                         // total information keep the consensus up (a lone thin strip)
 
@@ -218,6 +222,7 @@ struct GravityConfig {
     v("consensus_deg", consensus_deg, 0.01f, 45.0f);
     v("refine_first_deg", refine_first_deg, 0.01f, 45.0f);
     v("fit_rms_floor_m", fit_rms_floor_m, 1e-6f, 0.1f);
+    v("fit_rms_floor_per_m2", fit_rms_floor_per_m2, 0.0f, 0.1f);
     v("refine_prior_fraction", refine_prior_fraction, 0.0f, 1.0f);
   }
 };

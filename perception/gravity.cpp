@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -40,7 +41,9 @@ std::optional<Family> best_family(const std::vector<Segment>& segments, float co
 // A least-squares plane's normal tilts towards an in-plane axis with variance
 // rms^2 / (cells * spread along that axis): its inverse is this times the spread.
 double information_per_spread(const Segment& s, const GravityConfig& cfg) {
-  const double rms = std::max(s.rms_m, cfg.fit_rms_floor_m);
+  const double z = s.centroid.z();
+  const double rms = std::max({static_cast<double>(s.rms_m), static_cast<double>(cfg.fit_rms_floor_m),
+                               cfg.fit_rms_floor_per_m2 * z * z});
   return static_cast<double>(s.cells.size()) / (rms * rms);
 }
 
@@ -49,6 +52,19 @@ double information_per_spread(const Segment& s, const GravityConfig& cfg) {
 // normal poorly however many cells it has.
 double information(const Segment& s, const GravityConfig& cfg) {
   return information_per_spread(s, cfg) * std::min(s.spread_m2[0], s.spread_m2[1]);
+}
+
+// The information (1 / variance of a tilt) that knows up to within consensus_deg.
+double consensus_information(const GravityConfig& cfg) {
+  const double sin_agree = std::sin(cfg.consensus_deg * M_PI / 180.0);
+  return 1.0 / (sin_agree * sin_agree);
+}
+
+// A plane whose fit knows its normal only to worse than consensus_deg cannot
+// refine an up to within it: a far tread seen as a sliver, its tilt across it
+// set by depth noise.
+bool knows_normal_within_consensus(const Segment& s, const GravityConfig& cfg) {
+  return information(s, cfg) >= consensus_information(cfg);
 }
 
 // The up that the horizontal planes within tol_deg of `up` fit best: up is
@@ -64,6 +80,7 @@ Eigen::Vector3f fit_up(const std::vector<Segment>& segments, const Eigen::Vector
   bool any = false;
   for (const Segment& s : segments) {
     if (s.bent || s.normal.dot(up) < cos_tol) continue;
+    if (!knows_normal_within_consensus(s, cfg)) continue;
     const double per_spread = information_per_spread(s, cfg);
     for (int k = 0; k < 2; ++k) {
       const Eigen::Vector3d e = s.axis[k].cast<double>();
@@ -110,10 +127,14 @@ Eigen::Vector3f consensus_up(const std::vector<Segment>& segments, const Eigen::
   };
   Eigen::Vector3f best = family_up;
   double best_score = score(family_up);
+  // A candidate wins only by a margin that knows up to within consensus_deg:
+  // walls agree with every up along them, so far slivers beside them would
+  // otherwise set pitch on a few hundredths of the walls' information.
+  const double min_margin = consensus_information(cfg);
   for (const Segment& c : segments) {
     if (c.bent || !candidate(c.normal)) continue;
     const double sc = score(c.normal);
-    if (sc > best_score) best_score = sc, best = c.normal;
+    if (sc > best_score + min_margin) best_score = sc, best = c.normal;
   }
   // Fitted to the horizontal segments that agree with it, starting from their
   // support-weighted mean (vertical ones choose, they do not average: risers'

@@ -236,6 +236,38 @@ TEST(PerceptionGravity, AWellFittedTreadOutvotesRisersBentAtTheirNosings) {
   EXPECT_GT(up->dot(true_up(pitch)), std::cos(0.1 * M_PI / 180));
 }
 
+TEST(PerceptionGravity, FarSliversBesideParallelWallsDoNotSetPitch) {
+  // A level camera at the top of a flight going down, between two walls: the
+  // walls fix up only across them, the previous frame's up the rest, and the
+  // only level planes are treads 4.4 m away seen as slivers (a few cm deep),
+  // their fits 2.5 deg off in pitch (depth noise at that range). Up stays with
+  // the prior: the slivers know their normals to worse than consensus_deg.
+  const double pitch = -7.0;
+  const Eigen::Matrix3d Rt = test::optical_to_world(pitch, 0).transpose();
+  auto segment = [&](const Eigen::Vector3d& world_normal, size_t cells, double spread0_m, double spread1_m,
+                     float rms_m, float depth_m) {
+    Segment s;
+    s.normal = (Rt * world_normal).cast<float>();
+    s.cells.assign(cells, 0);
+    s.centroid = Eigen::Vector3f(0, 0, depth_m);
+    const Eigen::Vector3f a0 = s.normal.unitOrthogonal();
+    s.axis[0] = a0, s.axis[1] = s.normal.cross(a0).normalized();
+    s.spread_m2[0] = static_cast<float>(spread0_m * spread0_m);
+    s.spread_m2[1] = static_cast<float>(spread1_m * spread1_m);
+    s.rms_m = rms_m;
+    return s;
+  };
+  const Eigen::Vector3d Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d tilted = Eigen::AngleAxisd(2.5 * M_PI / 180, Y) * Z;  // pitch, about the walls' normal
+  const std::vector<Segment> segs = {segment(Y, 5700, 0.58, 0.86, 0.003f, 3.3f),
+                                     segment(-Y, 2200, 0.43, 0.49, 0.001f, 1.9f),
+                                     segment(tilted, 151, 0.063, 0.35, 0.0056f, 4.4f),
+                                     segment(tilted, 38, 0.06, 0.11, 0.005f, 4.4f)};
+  const auto up = estimate_up(segs, GravityConfig{}, true_up(pitch));
+  ASSERT_TRUE(up.has_value());
+  EXPECT_GT(up->dot(true_up(pitch)), std::cos(0.5 * M_PI / 180));
+}
+
 TEST(PerceptionGravity, ABentTreadIsOutvotedByThePlanesThatAgree) {
   // A camera at -2.4 deg (level, 0.9 m high) in front of a flight: two treads
   // of the same size, one of them tilted 3.3 deg as a whole (all of it in a
