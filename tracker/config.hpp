@@ -139,6 +139,8 @@ struct MergeConfig {
   double monotonic_tolerance_m = 0.04;  // m; a new step must rise with x within this
   double min_rise_fraction = 0.5;       // of the typical riser: a new step lies at least this far above the
                                         // step before it and below the one after (else it is the same level)
+  double min_run_fraction = 0.5;        // of the typical tread: ... and this far along the flight from each
+                                        // (one riser has one nosing: two at one x are one step measured twice)
   int min_tread_plane_observations = 2;  // observations of a tread plane before its height overrides the
                                         // step's edges (one sliver at a grazing angle is no measurement)
 
@@ -151,6 +153,7 @@ struct MergeConfig {
     v("max_model_steps", max_model_steps, 1, limits::kModelPlanes / 2);  // a riser and a tread plane each
     v("monotonic_tolerance_m", monotonic_tolerance_m, 0.0, 1.0);
     v("min_rise_fraction", min_rise_fraction, 0.0, 1.0);
+    v("min_run_fraction", min_run_fraction, 0.0, 1.0);
     v("min_tread_plane_observations", min_tread_plane_observations, 1, 1000);
   }
 };

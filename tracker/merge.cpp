@@ -66,12 +66,17 @@ void update(MapStep& m, const ObservedStep& o, const Pose4& pose, const MergeCon
                    m.tread_points_seen);
 }
 
-// A new step must keep the stair rising: above every step before it and below
-// every step after it, by at least min_rise_fraction of a riser.
-bool fits_between(const StairMap& map, size_t at, const ObservedStep& o, double riser, const MergeConfig& c) {
-  const double need = c.min_rise_fraction * riser - c.monotonic_tolerance_m;
-  if (at > 0 && o.z() - map.steps[at - 1].z() < need) return false;
-  if (at < map.steps.size() && map.steps[at].z() - o.z() < need) return false;
+// A new step must keep the stair rising and running: above every step before
+// it and below every step after it, by at least min_rise_fraction of a riser,
+// and along the flight from each by at least min_run_fraction of a tread (a
+// riser has one nosing: a second one at its x is the same step measured low,
+// as a riser's top under a nosing's slab is).
+bool fits_between(const StairMap& map, size_t at, const ObservedStep& o, double riser, double tread,
+                  const MergeConfig& c) {
+  const double rise = c.min_rise_fraction * riser - c.monotonic_tolerance_m;
+  const double run = c.min_run_fraction * tread - c.monotonic_tolerance_m;
+  if (at > 0 && (o.z() - map.steps[at - 1].z() < rise || o.x() - map.steps[at - 1].x() < run)) return false;
+  if (at < map.steps.size() && (map.steps[at].z() - o.z() < rise || map.steps[at].x() - o.x() < run)) return false;
   return true;
 }
 
@@ -161,7 +166,7 @@ int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4&
     const auto at = std::lower_bound(map.steps.begin(), map.steps.end(), o.x(),
                                      [](const MapStep& s, double x) { return s.x() < x; }) -
                     map.steps.begin();
-    if (!fits_between(map, static_cast<size_t>(at), o, riser, c)) continue;
+    if (!fits_between(map, static_cast<size_t>(at), o, riser, tread, c)) continue;
     MapStep m;
     update(m, o, pose, c, min_distance_m);
     map.steps.insert(map.steps.begin() + at, std::move(m));

@@ -146,6 +146,30 @@ TEST(TrackerMerge, ATreadPlaneSetsAStepsHeightOverItsEdges) {
   EXPECT_EQ(map.steps[0].confirmations, 13);
 }
 
+TEST(TrackerMerge, ASecondNosingAtAStepsXIsNoNewStep) {
+  // A robot looking up at risers under nosing overhangs sees a riser's top
+  // where the slab begins, 5-10 cm below its nosing. Beside the same step
+  // measured right, that low nosing rises enough above the step below to pass
+  // for a step of its own, at the same x: a duplicate step (a Kinect v2 robot
+  // ascent had two). One riser has one nosing.
+  StairMap map;
+  const Pose4 pose;
+  const TrackerConfig c;
+  auto at = [](double x, double z) {
+    ObservedStep o;
+    o.nosing_m = {x, 0.0, z};
+    return o;
+  };
+  merge(map, {at(0.0, 0.17), at(0.28, 0.34), at(0.56, 0.51)}, pose, c.merge, c.stair,
+        c.registration.icp_min_distance_m);
+  ASSERT_EQ(map.steps.size(), 3u);
+  EXPECT_EQ(merge(map, {at(0.28, 0.34), at(0.275, 0.245)}, pose, c.merge, c.stair, c.registration.icp_min_distance_m),
+            0);
+  EXPECT_EQ(map.steps.size(), 3u);
+  // A step the model missed, a tread along, is still added.
+  EXPECT_EQ(merge(map, {at(0.84, 0.68)}, pose, c.merge, c.stair, c.registration.icp_min_distance_m), 1);
+}
+
 TEST(Tracker, StepsCountConfirmations) {
   const Walk r = walk_stair(kStair, true, 0.6);
   for (const auto& f : r.model.flights)
