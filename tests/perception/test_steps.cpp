@@ -229,6 +229,37 @@ TEST(PerceptionReconstruction, TheNearestStepsNosingIsItsRisersFace) {
   }
 }
 
+TEST(PerceptionSteps, ANosingsSlabIsNoRiser) {
+  // Looking down an ascending flight with 3 cm nosing overhangs: each riser's
+  // face is seen below its slab, and the slab's own front face, 3.5 cm tall at
+  // the tread's level and 3 cm nearer, is a plane of its own. The riser stands
+  // on the level below; taking the slab put nosings 3 cm apart from the faces
+  // and treads 0.20-0.25 m for 0.222.
+  constexpr float kRise = 0.15f, kTread = 0.222f, kOverhang = 0.03f, kFloor = -0.8f, kFirstFace = 0.6f;
+  PlaneSet ps;
+  add_plane(ps, PlaneKind::Tread, {0.1f, kFirstFace, -0.5f, 0.5f, kFloor, kFloor, 0.35f, kFloor});
+  for (int k = 0; k < 3; ++k) {
+    const float face = kFirstFace + kTread * k, below = kFloor + kRise * k, top = below + kRise;
+    add_plane(ps, PlaneKind::Tread, {face - kOverhang + 0.01f, face + kTread - 0.01f, -0.5f, 0.5f, top, top,
+                                     face + 0.5f * kTread, top});
+    add_plane(ps, PlaneKind::Riser, {face, face, -0.5f, 0.5f, below + 0.01f, top - 0.06f, face, below + 0.05f});
+    if (k != 1) {  // a slab seen as its own plane on some steps only
+      const float slab = face - kOverhang;
+      add_plane(ps, PlaneKind::Riser, {slab, slab, -0.5f, 0.5f, top - 0.035f, top - 0.005f, slab, top - 0.02f});
+    }
+  }
+  const StairConfig cfg;
+  const StairChain chain = best_chain(tread_levels(ps, {}, cfg), cfg);
+  ASSERT_EQ(chain.direction, Direction::Up);
+  const std::vector<Step> steps = steps_from_chain(ps, chain, cfg);
+  ASSERT_EQ(steps.size(), 3u);
+  for (size_t k = 0; k < steps.size(); ++k) {
+    EXPECT_NEAR(ps.axial(steps[k].nosing_m), kFirstFace + kTread * k, 1e-4) << "step " << k;
+    if (k + 1 < steps.size())
+      EXPECT_NEAR(ps.axial(steps[k + 1].nosing_m) - ps.axial(steps[k].nosing_m), kTread, 1e-4) << "step " << k;
+  }
+}
+
 TEST(PerceptionSteps, SingleCurbIsNoStaircase) {
   Pipeline p;
   const Observation o = p.process(test::render_stairs(640, 480, -35, 0, 1.0, 1, 1.3, 0.15, 5.0));
