@@ -260,6 +260,30 @@ TEST(PerceptionSteps, ANosingsSlabIsNoRiser) {
   }
 }
 
+TEST(PerceptionSteps, ARiserCutByMissingDepthIsNoFootInView) {
+  // A robot's time-of-flight camera reads nothing nearer than 0.5 m: the lower
+  // part of the first riser and the floor before it are missing, though not at
+  // the image's border. The riser is cut there, not ended: its rise is the
+  // chain's, flagged, never its seen part measured as a short first step.
+  constexpr double kHeight = 0.45, kRise = 0.17, kCut = 0.07;
+  DepthImage img = test::render_stairs(640, 480, -10, 0, kHeight, 4, 0.8, kRise, 0.28);
+  const Eigen::Matrix3d R = test::optical_to_world(-10, 0);
+  for (int v = 0; v < img.K.height; ++v)
+    for (int u = 0; u < img.K.width; ++u) {
+      uint16_t& d = img.depth[static_cast<size_t>(v) * img.K.width + u];
+      const Eigen::Vector3d p = R * Eigen::Vector3d((u - img.K.cx) / img.K.fx, (v - img.K.cy) / img.K.fy, 1.0) * (d * 1e-3);
+      if (d && p.z() < -kHeight + kCut) d = 0;
+    }
+  Pipeline p;
+  const Observation o = p.process(img);
+  ASSERT_EQ(o.direction, Direction::Up) << o.status;
+  ASSERT_GE(o.steps.size(), 2u);
+  const Step& first = o.steps.front();
+  ASSERT_TRUE(first.riser_height_m.has_value());
+  EXPECT_NEAR(first.nosing_m.z(), -kHeight + kRise, 0.01);
+  if (!(first.inferred & kStepRiserInferred)) EXPECT_NEAR(*first.riser_height_m, kRise, 0.01);
+}
+
 TEST(PerceptionSteps, SingleCurbIsNoStaircase) {
   Pipeline p;
   const Observation o = p.process(test::render_stairs(640, 480, -35, 0, 1.0, 1, 1.3, 0.15, 5.0));
