@@ -128,6 +128,22 @@ std::vector<Segment> stair_segments(double pitch_deg, size_t tread_cells, size_t
   return segs;
 }
 
+// A segment as a plane fit leaves it: normal (given in the world, seen from a
+// camera at pitch_deg), cells, the standard deviations of its cells along its
+// two in-plane axes, and the fit's rms.
+Segment fitted_segment(double pitch_deg, const Eigen::Vector3d& world_normal, size_t cells, double spread0_m,
+                       double spread1_m, float rms_m) {
+  Segment s;
+  s.normal = (test::optical_to_world(pitch_deg, 0).transpose() * world_normal).cast<float>();
+  s.cells.assign(cells, 0);
+  const Eigen::Vector3f a0 = s.normal.unitOrthogonal();
+  s.axis[0] = a0, s.axis[1] = s.normal.cross(a0).normalized();
+  s.spread_m2[0] = static_cast<float>(spread0_m * spread0_m);
+  s.spread_m2[1] = static_cast<float>(spread1_m * spread1_m);
+  s.rms_m = rms_m;
+  return s;
+}
+
 Eigen::Vector3f true_up(double pitch_deg) {
   return (test::optical_to_world(pitch_deg, 0).transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
 }
@@ -213,19 +229,8 @@ TEST(PerceptionGravity, TreadsTooSmallToChooseStillFitUp) {
 // the risers know theirs, so up is the one it agrees with.
 TEST(PerceptionGravity, AWellFittedTreadOutvotesRisersBentAtTheirNosings) {
   const double pitch = 10.0;
-  const Eigen::Matrix3d Rt = test::optical_to_world(pitch, 0).transpose();
   auto segment = [&](const Eigen::Vector3d& world_normal, size_t cells, double spread0_m, double spread1_m,
-                     float rms_m) {
-    Segment s;
-    s.normal = (Rt * world_normal).cast<float>();
-    s.cells.assign(cells, 0);
-    const Eigen::Vector3f a0 = s.normal.unitOrthogonal();
-    s.axis[0] = a0, s.axis[1] = s.normal.cross(a0).normalized();
-    s.spread_m2[0] = static_cast<float>(spread0_m * spread0_m);
-    s.spread_m2[1] = static_cast<float>(spread1_m * spread1_m);
-    s.rms_m = rms_m;
-    return s;
-  };
+                     float rms_m) { return fitted_segment(pitch, world_normal, cells, spread0_m, spread1_m, rms_m); };
   const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d leaning = Eigen::AngleAxisd(5.0 * M_PI / 180, Y) * -X;
   std::vector<Segment> segs = {segment(-Y, 6400, 0.6, 0.9, 0.0011f), segment(Y, 2200, 0.2, 0.7, 0.0010f)};
@@ -243,18 +248,10 @@ TEST(PerceptionGravity, FarSliversBesideParallelWallsDoNotSetPitch) {
   // their fits 2.5 deg off in pitch (depth noise at that range). Up stays with
   // the prior: the slivers know their normals to worse than consensus_deg.
   const double pitch = -7.0;
-  const Eigen::Matrix3d Rt = test::optical_to_world(pitch, 0).transpose();
   auto segment = [&](const Eigen::Vector3d& world_normal, size_t cells, double spread0_m, double spread1_m,
                      float rms_m, float depth_m) {
-    Segment s;
-    s.normal = (Rt * world_normal).cast<float>();
-    s.cells.assign(cells, 0);
+    Segment s = fitted_segment(pitch, world_normal, cells, spread0_m, spread1_m, rms_m);
     s.centroid = Eigen::Vector3f(0, 0, depth_m);
-    const Eigen::Vector3f a0 = s.normal.unitOrthogonal();
-    s.axis[0] = a0, s.axis[1] = s.normal.cross(a0).normalized();
-    s.spread_m2[0] = static_cast<float>(spread0_m * spread0_m);
-    s.spread_m2[1] = static_cast<float>(spread1_m * spread1_m);
-    s.rms_m = rms_m;
     return s;
   };
   const Eigen::Vector3d Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
