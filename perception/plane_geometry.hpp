@@ -41,23 +41,26 @@ PlaneSet plane_geometry(const NormalGrid& grid, const std::vector<Segment>& segm
                         const Eigen::Matrix3f& gravity, const PlaneGeometryConfig& cfg, const OutputConfig& caps,
                         std::optional<float> axis_yaw_rad = std::nullopt);
 
-// The one riser search of steps and reconstruction: the segmented riser whose
-// face (s_mean) lies within [s_lo, s_hi] and whose extent satisfies `fits`,
-// nearest to s_ref; -1 if none.
-template <class Fits>
-int find_riser(const PlaneSet& ps, float s_lo, float s_hi, float s_ref, Fits fits) {
+// The one riser search of steps and reconstruction: of the segmented risers
+// whose face (s_mean) lies within [s_lo, s_hi] and whose extent satisfies
+// `fits`, the one `better` (a, b) prefers; -1 if none.
+template <class Fits, class Better>
+int find_riser(const PlaneSet& ps, float s_lo, float s_hi, Fits fits, Better better) {
   int best = -1;
-  float best_d = 0.0f;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
     if (ps.planes[i].kind != PlaneKind::Riser || e.s_mean < s_lo || e.s_mean > s_hi || !fits(e)) continue;
-    const float d = std::abs(e.s_mean - s_ref);
-    if (best < 0 || d < best_d) {
-      best_d = d;
-      best = static_cast<int>(i);
-    }
+    if (best < 0 || better(e, ps.extents[static_cast<size_t>(best)])) best = static_cast<int>(i);
   }
   return best;
+}
+
+// ... nearest to s_ref.
+template <class Fits>
+int find_riser(const PlaneSet& ps, float s_lo, float s_hi, float s_ref, Fits fits) {
+  return find_riser(ps, s_lo, s_hi, fits, [s_ref](const PlaneExtent& a, const PlaneExtent& b) {
+    return std::abs(a.s_mean - s_ref) < std::abs(b.s_mean - s_ref);
+  });
 }
 
 // At most max_points of `cells`, spatially even on the image grid.

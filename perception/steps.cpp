@@ -79,28 +79,6 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
 }
 
 
-namespace {
-
-// Of the riser planes whose faces lie within [s_lo, s_hi] and span the
-// rise from below_z to tread_z, the one reaching lowest: a riser stands on the
-// level below; under a nosing overhang the slab's front face, a few cm tall at
-// the tread's level and 2-4 cm nearer, is a plane of its own, and taking it
-// put that step's nosing at the slab and the next one's at a riser's face (a
-// hand-held Kinect v1 ascent: treads 0.20-0.25 m for 0.222). -1 if none.
-int riser_below(const PlaneSet& ps, float s_lo, float s_hi, float below_z, float tread_z) {
-  int best = -1;
-  for (size_t i = 0; i < ps.planes.size(); ++i) {
-    const PlaneExtent& e = ps.extents[i];
-    if (ps.planes[i].kind != PlaneKind::Riser || e.s_mean < s_lo || e.s_mean > s_hi || e.z_max < below_z ||
-        e.z_min > tread_z)
-      continue;
-    if (best < 0 || e.z_min < ps.extents[static_cast<size_t>(best)].z_min) best = static_cast<int>(i);
-  }
-  return best;
-}
-
-}  // namespace
-
 std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, const StairConfig& cfg) {
   std::vector<Step> steps;
   const auto& L = chain.levels;
@@ -123,9 +101,16 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
     // Going down the nosing is the depth jump at the tread's far end where one
     // shows it: the plane's trimmed extent stops short of the edge's cells.
     float nosing_s = up ? tread.s_min : tread.far_edge ? tread.edge_s : tread.s_max;
-    // The riser whose face lies at the nosing line, spanning the rise.
-    s.riser_plane = riser_below(ps, nosing_s - cfg.riser_at_nosing_m, nosing_s + cfg.riser_at_nosing_m, below.z,
-                                tread.z);
+    // The riser whose face lies at the nosing line, spanning the rise; of
+    // several, the one reaching lowest: a riser stands on the level below, and
+    // under a nosing overhang the slab's front face, a few cm tall at the
+    // tread's level and 2-4 cm nearer, is a plane of its own (taking it put
+    // that step's nosing at the slab and the next one's at a riser's face: a
+    // hand-held Kinect v1 ascent's treads 0.20-0.25 m for 0.222).
+    s.riser_plane = find_riser(
+        ps, nosing_s - cfg.riser_at_nosing_m, nosing_s + cfg.riser_at_nosing_m,
+        [&](const PlaneExtent& e) { return e.z_max >= below.z && e.z_min <= tread.z; },
+        [](const PlaneExtent& a, const PlaneExtent& b) { return a.z_min < b.z_min; });
     // The riser's face is the better estimate: the tread's edge cells are lost at the corner.
     if (s.riser_plane >= 0) nosing_s = ps.extents[s.riser_plane].s_mean;
     s.nosing_m = ps.to_camera(nosing_s, 0.5f * (tread.t_min + tread.t_max), tread.z).cast<double>();
