@@ -48,6 +48,22 @@ Profile profile(const StairMap& map, const StairPriorConfig& c) {
 
 double outside(double v, double lo, double hi) { return std::max({0.0, lo - v, v - hi}); }
 
+// The model's extent in the x-z profile, `margin` around its first riser, its last tread's far
+// end and its lowest and highest levels: points outside lie on steps the model does not have yet.
+struct Extent {
+  double x_lo, x_hi, z_lo, z_hi;
+  Extent(const Profile& p, double margin)
+      : x_lo(p.riser_x.front() - margin), x_hi(p.tread_x_hi.back() + margin), z_lo(p.tread_z.front() - margin),
+        z_hi(p.tread_z.back() + margin) {}
+  // A plane point: below the top and before the far end, and not before and below the first step.
+  bool holds_plane_point(const Eigen::Vector3d& q) const {
+    return q.x() <= x_hi && q.z() <= z_hi && (q.x() >= x_lo || q.z() >= z_lo);
+  }
+  bool holds_nosing(const Eigen::Vector3d& q) const {
+    return q.x() >= x_lo && q.x() <= x_hi && q.z() >= z_lo && q.z() <= z_hi;
+  }
+};
+
 // std::hypot guards against overflow at a cost this inner loop cannot pay.
 double norm2(double a, double b) { return std::sqrt(a * a + b * b); }
 
@@ -149,7 +165,10 @@ RegistrationInput registration_input(const Observation& obs, const RegistrationC
     in.nosings.push_back(s.nosing_m);
   }
   const int foot = foot_plane(obs, c);
-  if (foot >= 0) sample(obs.planes[foot], c.points_per_plane, in.tread_points);
+  if (foot >= 0) {
+    sample(obs.planes[foot], c.points_per_plane, in.foot_points);
+    in.tread_points.insert(in.tread_points.end(), in.foot_points.begin(), in.foot_points.end());
+  }
   return in;
 }
 
@@ -179,6 +198,23 @@ double yaw_from_axis(double axis_angle_rad, double prior_yaw_rad) {
   const double a = wrap_angle(-axis_angle_rad);
   const double b = wrap_angle(a + M_PI);
   return std::abs(wrap_angle(a - prior_yaw_rad)) <= std::abs(wrap_angle(b - prior_yaw_rad)) ? a : b;
+}
+
+double foot_agreement_beyond_model(const RegistrationInput& in, const StairMap& map, const Pose4& pose,
+                                   const RegistrationConfig& c, const StairPriorConfig& stair) {
+  if (map.empty() || in.foot_points.empty()) return 0.0;
+  Profile prof = profile(map, stair);
+  const Extent extent(prof, c.accept_distance_m);
+  const Eigen::Isometry3d T = pose.isometry();
+  for (const auto& p : in.riser_points)
+    if (extent.holds_plane_point(T * p)) return 0.0;
+  for (const auto& p : in.nosings)
+    if (extent.holds_nosing(T * p)) return 0.0;
+  // The top level runs on beyond the part of it seen so far, as the level before the first riser does.
+  prof.tread_x_hi.back() = std::numeric_limits<double>::infinity();
+  int on = 0;
+  for (const auto& p : in.foot_points) on += nearest_tread(prof, T * p).distance < c.accept_distance_m;
+  return static_cast<double>(on) / static_cast<double>(in.foot_points.size());
 }
 
 Registration register_to_map(const RegistrationInput& in, const StairMap& map, const Pose4& initial,
@@ -224,13 +260,12 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
   // Agreement at the final pose, risers and treads apart (a slip that fits the treads must not pass on
   // their majority), over the points within the model's extent: steps beyond its ends are new.
   const Eigen::Vector3d& t = reg.pose.t_m;
-  const double x_lo = prof.riser_x.front() - c.accept_distance_m, x_hi = prof.tread_x_hi.back() + c.accept_distance_m;
-  const double z_hi = prof.tread_z.back() + c.accept_distance_m, z_lo = prof.tread_z.front() - c.accept_distance_m;
+  const Extent extent(prof, c.accept_distance_m);
   double sq = 0;
   int riser_in = 0, tread_in = 0, riser_within = 0, tread_within = 0;
   auto count = [&](const Eigen::Vector3d& q, double d, int& in, int& within) {
     if (d < c.accept_distance_m) ++in, sq += d * d;
-    if (q.x() <= x_hi && q.z() <= z_hi && (q.x() >= x_lo || q.z() >= z_lo)) ++within;
+    if (extent.holds_plane_point(q)) ++within;
   };
   for (const auto& p : risers) count(p + t, nearest_riser(prof, p + t).distance, riser_in, riser_within);
   for (const auto& p : treads) count(p + t, nearest_tread(prof, p + t).distance, tread_in, tread_within);
@@ -238,7 +273,7 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
   for (const auto& p : nosings) {
     const Eigen::Vector3d q = p + t;
     nosing_in += nearest_nosing(prof, q).norm() < c.accept_distance_m;
-    nosing_within += q.x() >= x_lo && q.x() <= x_hi && q.z() >= z_lo && q.z() <= z_hi;
+    nosing_within += extent.holds_nosing(q);
   }
   reg.x_inliers = riser_in + nosing_in;
   reg.x_within = riser_within + nosing_within;

@@ -19,6 +19,7 @@ struct StairPriorConfig;
 // Observation samples in the gravity-aligned camera frame.
 struct RegistrationInput {
   std::vector<Eigen::Vector3d> riser_points, tread_points, nosings;
+  std::vector<Eigen::Vector3d> foot_points;  // the level the lowest step stands on (also among tread_points)
 };
 
 // The level the lowest seen step stands on: the index of a horizontal plane no
@@ -56,6 +57,14 @@ struct Registration {
   int x_within = 0;           // riser points and nosings within the model's extent
   int nosing_inliers = 0;     // nosings that agree at the final pose
 };
+
+// The next flight seen across a landing: at `pose` every riser point and nosing lies beyond the
+// model's ends, so nothing can fix the position along the stair, while the level the lowest step
+// stands on lies on the model's levels (its top level running on beyond the part seen so far).
+// Returns that level's share of points within accept_distance_m of them; 0 without such a level
+// or when a riser or nosing lies within the model.
+double foot_agreement_beyond_model(const RegistrationInput& in, const StairMap& map, const Pose4& pose,
+                                   const RegistrationConfig& c, const StairPriorConfig& stair);
 
 // Registers with yaw fixed to `initial.yaw_rad`, starting from `initial`.
 Registration register_to_map(const RegistrationInput& in, const StairMap& map, const Pose4& initial,

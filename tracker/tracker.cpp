@@ -254,7 +254,14 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   }
   // Entirely beyond the model (the next flight seen from a landing): nothing
   // to register against, so the motion prior places it while it is fresh.
-  const bool dead_reckoned = reg.within == 0 && (with_odometry || since_accept_s <= config_.motion.max_prediction_s);
+  const bool fresh = with_odometry || since_accept_s <= config_.motion.max_prediction_s;
+  bool dead_reckoned = fresh && reg.within == 0;
+  // Or only the level it stands on overlaps the model (that landing, its near part seen before):
+  // the level fixes the height and nothing the position along the stair. A whole-step search fitted
+  // the next flight onto the last one, its copy (4 false model steps on a two-flight walk).
+  if (fresh && !dead_reckoned && reg.x_inliers == 0)
+    dead_reckoned = foot_agreement_beyond_model(input, map_, with_observed_height(obs, start_pose),
+                                                config_.registration, config_.stair) >= config_.motion.min_inlier_ratio;
   if (dead_reckoned) {
     reg.pose = with_observed_height(obs, start_pose);
     reg.inlier_ratio = 1.0;
@@ -281,7 +288,7 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
     return;
   }
   accept(obs, reg.pose);
-  model_.state = relocalising ? TrackingState::Relocalised : TrackingState::Ok;
+  model_.state = relocalising && !dead_reckoned ? TrackingState::Relocalised : TrackingState::Ok;
   model_.status = dead_reckoned ? "beyond the model: placed by the motion prior" : relocalising ? "relocalised" : "ok";
   publish(obs, reg.pose, true);
 }

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -270,22 +271,23 @@ TEST(Tracker, ARelocalisationMustRestOnRisersOrNosings) {
 
 // A level as perception sees it, `rise_below` under the lowest step's nosing:
 // going down beyond that step (the floor at a flight's foot), going up before
-// it, from `gap` short of its riser to 1.5 m back.
-void add_level(Observation& obs, double rise_below, double gap = 0.02) {
+// it, from `gap` short of its riser to `depth_m` back.
+void add_level(Observation& obs, double rise_below, double gap = 0.02, double depth_m = 1.5) {
   const Step* low = &obs.steps.front();
   for (const Step& s : obs.steps)
     if (s.nosing_m.z() < low->nosing_m.z()) low = &s;
   const Eigen::Vector3f n = low->nosing_m.cast<float>();
   const float sign = obs.direction == Direction::Down ? 1.0f : -1.0f;
+  const int rows = static_cast<int>(std::lround(depth_m / 0.075));
   Plane p;
   p.kind = PlaneKind::Landing;
-  for (int i = 0; i < 20; ++i)
+  for (int i = 0; i < rows; ++i)
     for (int j = 0; j < 10; ++j)
       p.points.emplace_back(n.x() + sign * (static_cast<float>(gap) + 0.075f * i), -0.5f + 0.1f * j,
                             n.z() - static_cast<float>(rise_below));
-  p.centroid = Eigen::Vector3f(n.x() + sign * (static_cast<float>(gap) + 0.075f * 9.5f), 0.0f,
+  p.centroid = Eigen::Vector3f(n.x() + sign * (static_cast<float>(gap) + 0.075f * 0.5f * (rows - 1)), 0.0f,
                                n.z() - static_cast<float>(rise_below));
-  p.extent_m = 1.5f;
+  p.extent_m = static_cast<float>(depth_m);
   p.support = static_cast<int>(p.points.size());
   obs.planes.push_back(p);
 }
@@ -320,6 +322,36 @@ TEST(Tracker, AJumpOfHalfAStepDownTheFlightIsPlacedByTheFloorAtItsFoot) {
   EXPECT_NEAR(m.camera_position_m.x() - m.flights[0].steps[0].nosing_m.x(), c.x() - kStair.nosing_x(0), 0.04)
       << m.status;
   EXPECT_NEAR(m.camera_position_m.z() - z0, c.z(), 0.04) << m.status;
+}
+
+// A flight that only comes into view from the mid landing (a turn, a wall) after a gap long
+// enough to lose the camera: its steps lie beyond the model, and only the landing the camera
+// stands on overlaps it. The landing fixes the height and nothing fixes the position along the
+// stair but the motion prior; a whole-step search around the last pose instead fitted the new
+// flight onto the last one (it is its copy): 4 false model steps on a hand-held two-flight walk.
+TEST(Tracker, TheNextFlightSeenFromALandingAfterAGapIsPlacedBeyondIt) {
+  // Until then the first flight and the near 0.7 m of its landing are all there is to see.
+  const StairGeometry first = make_stair(6, 0.17, 0.28, 0.7);
+  ObservationMaker before(first, 12), after(kTwoFlights, 12);
+  Tracker tracker;
+  const auto cams = walk(kTwoFlights, true, 0.6, 30.0);
+  const double landing_x = kTwoFlights.nosing_x(5);
+  size_t k = 0;
+  for (; cams[k].position_m.x() < landing_x - 0.5; ++k) tracker.update(before.make(cams[k], static_cast<int64_t>(k) * 33333));
+  ASSERT_EQ(tracker.model().flights.size(), 1u);
+  ASSERT_EQ(tracker.model().flights[0].steps.size(), 6u) << tracker.model().status;
+  // 0.8 s without a frame: lost, the motion prior still fresh; then the next flight with the
+  // landing before it.
+  for (k += 24; k < cams.size(); ++k) {
+    Observation obs = after.make(cams[k], static_cast<int64_t>(k) * 33333);
+    if (!obs.steps.empty() && cams[k].position_m.x() < kTwoFlights.nosing_x(6)) add_level(obs, 0.17, 0.02, 0.45);
+    tracker.update(obs);
+  }
+  Walk r;
+  r.model = tracker.model();
+  r.frames = static_cast<int>(cams.size()) - 24;
+  r.rejected = tracker.rejected_registrations();
+  expect_accurate(r, kTwoFlights, "second flight first seen from the landing after a gap");
 }
 
 // The level the lowest seen step stands on joins registration only where it
