@@ -152,6 +152,11 @@ RegistrationInput planes_in_view(const Observation& obs, const RegistrationConfi
   RegistrationInput in = level_points(obs, c);
   for (const Plane& p : obs.planes)
     if (p.kind == PlaneKind::Riser) sample(p, c.points_per_plane, in.riser_points);
+  // Nosings seen from above as depth jumps (thesis 3.4.2): going down past a flight's last steps
+  // the risers face away, and the last nosing's jump is all that fixes the position along it.
+  for (const Edge& e : obs.edges)
+    if (e.source == EdgeSource::DepthJump && e.type == EdgeType::Convex)
+      in.nosings.push_back(0.5 * (e.start + e.end).cast<double>());
   return in;
 }
 

@@ -31,7 +31,7 @@ int foot_plane(const Observation& obs, const RegistrationConfig& c);
 // Every level in view (tread and landing planes) as tread points: a frame without steps.
 RegistrationInput level_points(const Observation& obs, const RegistrationConfig& c);
 
-// Every riser and level in view: a frame without steps, placed on the model's planes.
+// Every riser, level and depth-jump nosing in view: a frame without steps, placed on the model's planes.
 RegistrationInput planes_in_view(const Observation& obs, const RegistrationConfig& c);
 
 // The steps' planes and nosings, and the level the lowest step stands on.

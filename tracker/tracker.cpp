@@ -187,14 +187,14 @@ Pose4 Tracker::with_observed_height(const Observation& obs, Pose4 pose) const {
   return pose;
 }
 
-// A frame in which perception found no staircase may still show the model's risers: from a
-// flight's last steps only one or two are in view. Where they and the levels in view agree with
-// the model near the prior, they place the camera (x from the risers, z from the levels); the
+// A frame in which perception found no staircase may still show the model's risers or nosings:
+// from a flight's last steps only one or two are in view. Where they and the levels in view agree
+// with the model near the prior, they place the camera (x from them, z from the levels); the
 // frame is not merged (perception did not verify it) and does not feed the velocity (a robot's
 // jerky climb extrapolated from such poses went a step astray).
 std::optional<Pose4> Tracker::on_planes_in_view(const Observation& obs, const Pose4& prior) const {
   const RegistrationInput in = planes_in_view(obs, config_.registration);
-  if (in.riser_points.empty()) return std::nullopt;
+  if (in.riser_points.empty() && in.nosings.empty()) return std::nullopt;
   const Registration reg = register_to_map(in, map_, prior, config_.registration, config_.stair);
   if (reg.x_inliers == 0 || reg.inlier_ratio < config_.motion.min_inlier_ratio ||
       (reg.pose.t_m - prior.t_m).norm() > config_.motion.max_translation_jump_m)
@@ -211,7 +211,7 @@ void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool wi
   const bool predicted = obs.camera.valid && (with_odometry || since_accept_s <= config_.motion.predict_camera_s);
   if (predicted)
     if (const auto placed = on_planes_in_view(obs, prior)) {
-      model_.status = why + "; camera placed on the model's risers in view";
+      model_.status = why + "; camera placed on the model's risers or nosings in view";
       return publish(obs, *placed, true);
     }
   model_.status = !predicted      ? why

@@ -458,6 +458,38 @@ TEST(Tracker, AFrameWithoutStepsIsPlacedByTheRisersInView) {
   EXPECT_EQ(m.observations_fused, fused) << "not merged";
 }
 
+// Past a flight's last steps going down perception sees one step, no staircase, and no riser (they
+// face away): the tracker placed the camera by the motion prior alone, 4-6 cm off as a robot tipped
+// over the last nosing (the wrong step beneath in 3 frames). The nosings' depth jumps, published in
+// every observation, place it on the model.
+TEST(Tracker, WithoutStepsTheNosingsDepthJumpsPlaceTheCamera) {
+  ObservationMaker maker(kStair, 13);
+  Tracker tracker;
+  const auto cams = walk(kStair, false, 0.3, 30.0);
+  size_t k = 0;
+  for (; cams[k].position_m.x() > kStair.nosing_x(3); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  ASSERT_EQ(tracker.model().flights.size(), 1u);
+  // The next frame, but the camera 6 cm on where the prior expects 1 cm: its nosings as depth jumps, no steps.
+  const size_t j = k + 6;
+  Observation obs = maker.make(cams[j], static_cast<int64_t>(k) * 33333);
+  ASSERT_FALSE(obs.steps.empty());
+  for (const Step& st : obs.steps) {
+    Edge e;
+    e.type = EdgeType::Convex;
+    e.source = EdgeSource::DepthJump;
+    e.start = (st.nosing_m + Eigen::Vector3d(0, 0.2, 0)).cast<float>();
+    e.end = (st.nosing_m - Eigen::Vector3d(0, 0.2, 0)).cast<float>();
+    obs.edges.push_back(e);
+  }
+  obs.steps.clear();
+  const StairModel& m = tracker.update(obs);
+  ASSERT_TRUE(m.camera_valid) << m.status;
+  EXPECT_NE(m.status.find("nosings in view"), std::string::npos) << m.status;
+  const Eigen::Vector3d& c = cams[j].position_m;
+  EXPECT_NEAR(m.camera_position_m.x() - m.flights[0].steps[0].nosing_m.x(), c.x() - kStair.nosing_x(0), 0.02)
+      << m.status;
+}
+
 TEST(Tracker, OutOfOrderObservationsAreDroppedAndCounted) {
   ObservationMaker maker(kStair, 5);
   Tracker tracker;
