@@ -259,8 +259,10 @@ std::vector<JumpEdge> depth_jump_edges(const NormalGrid& g, const DepthImage& fr
       const JumpPoint& b = pts[line[static_cast<size_t>(hi - ts.begin())]];
       e.edge.type = EdgeType::Convex;
       e.edge.source = EdgeSource::DepthJump;
-      e.edge.start = e.s * axis + e.t_min * lateral + e.z * Eigen::Vector3f::UnitZ();
-      e.edge.end = e.s * axis + e.t_max * lateral + e.z * Eigen::Vector3f::UnitZ();
+      // Published at the jump's pixel rows, the nosing itself: the near cells' mean points lie about
+      // 1 cm inside the tread (test_edges_depth_jumps), and the tracker places frames on these edges.
+      e.edge.start = e.nosing_s * axis + e.t_min * lateral + e.z * Eigen::Vector3f::UnitZ();
+      e.edge.end = e.nosing_s * axis + e.t_max * lateral + e.z * Eigen::Vector3f::UnitZ();
       e.edge.start_px = a.px;
       e.edge.end_px = b.px;
       e.edge.support = static_cast<int>(line.size());

@@ -51,6 +51,7 @@ void Tracker::reset() {
   map_ = StairMap();
   direction_.reset();
   accepted_.clear();  // odometry is kept: it is no state of the model
+  placed_.reset();
   have_utime_ = false;
   const StairModel fresh;
   model_ = fresh;
@@ -96,22 +97,27 @@ Eigen::Vector3d Tracker::to_base_m(const Observation& obs) const {
 // Constant velocity of the point that moves smoothly: with a mount the robot's base (its body pitches
 // over a flight's ends and swings the camera forward or back by up to the mount's height), else the
 // camera. `to_base_m` is this frame's camera -> base offset (the attitude perception measured).
+// The motion starts from where the camera was last placed: the last accepted pose, or a frame
+// placed on the planes in view since (a robot slowing as it tipped over a flight's last nosing was
+// placed on it for three frames, then the prior from the last registration put it 12 cm on).
 Pose4 Tracker::predict(int64_t utime, const Eigen::Vector3d& to_base_m) const {
   const Accepted& a1 = accepted_.back();
   const Pose4& p1 = a1.pose;
   if (const auto p = odometry_.predict(p1, a1.utime, utime)) return *p;
+  const Accepted& last = placed_ && placed_->utime > a1.utime ? *placed_ : a1;
   const Accepted& a0 = accepted_.front();
-  const double dt = seconds(utime - a1.utime);
-  if (a1.utime == a0.utime || dt > config_.motion.max_prediction_s) return p1;
+  if (a1.utime == a0.utime || seconds(utime - a1.utime) > config_.motion.max_prediction_s) return last.pose;
+  const double dt = seconds(utime - last.utime);
   const double span = seconds(a1.utime - a0.utime);
   const Eigen::Vector3d b1 = p1.t_m + p1.rotation() * a1.to_base_m;
   const Eigen::Vector3d b0 = a0.pose.t_m + a0.pose.rotation() * a0.to_base_m;
-  Pose4 p = p1;
-  p.yaw_rad = wrap_angle(p1.yaw_rad + wrap_angle(p1.yaw_rad - a0.pose.yaw_rad) * (dt / span));
-  Eigen::Vector3d b = b1 + (b1 - b0) * (dt / span);
+  const Eigen::Vector3d bl = last.pose.t_m + last.pose.rotation() * last.to_base_m;
+  Pose4 p = last.pose;
+  p.yaw_rad = wrap_angle(last.pose.yaw_rad + wrap_angle(p1.yaw_rad - a0.pose.yaw_rad) * (dt / span));
+  Eigen::Vector3d b = bl + (b1 - b0) * (dt / span);
   // Height follows the stair's mean slope, not the last vertical speed: a gap
   // across a flight's end would carry its slope on.
-  b.z() = b1.z() + mean_surface_z_m(map_, b.x(), config_.stair) - mean_surface_z_m(map_, b1.x(), config_.stair);
+  b.z() = bl.z() + mean_surface_z_m(map_, b.x(), config_.stair) - mean_surface_z_m(map_, bl.x(), config_.stair);
   p.t_m = b - p.rotation() * to_base_m;
   return p;
 }
@@ -212,6 +218,7 @@ void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool wi
   if (predicted)
     if (const auto placed = on_planes_in_view(obs, prior)) {
       model_.status = why + "; camera placed on the model's risers or nosings in view";
+      placed_ = Accepted{obs.source_utime, *placed, to_base_m(obs)};
       return publish(obs, *placed, true);
     }
   model_.status = !predicted      ? why
@@ -314,6 +321,7 @@ void Tracker::accept(const Observation& obs, const Pose4& pose) {
   reconstruct_occluded_steps(map_, config_.reconstruction, config_.stair, config_.confirmation.min_confirmations,
                              config_.merge.max_model_steps);
   accepted_.push_back({obs.source_utime, pose, to_base_m(obs)});
+  placed_.reset();
   odometry_.forget_before(obs.source_utime);
   while (accepted_.size() > 2 && seconds(obs.source_utime - accepted_[1].utime) >= config_.motion.velocity_window_s)
     accepted_.pop_front();

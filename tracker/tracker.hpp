@@ -13,6 +13,7 @@
 #include "tracker/stair_map.hpp"
 
 #include <deque>
+#include <optional>
 #include <string>
 
 namespace stairs {
@@ -69,6 +70,9 @@ class Tracker {
     Eigen::Vector3d to_base_m;
   };
   std::deque<Accepted> accepted_;
+  // A frame placed on the planes in view since the last accepted one: where the camera was last
+  // seen, so the prior starts there (its velocity stays the accepted poses').
+  std::optional<Accepted> placed_;
   int64_t last_utime_ = 0;
   bool have_utime_ = false;
   int64_t dropped_out_of_order_ = 0, rejected_registrations_ = 0, resets_ = 0, time_jumps_ = 0;

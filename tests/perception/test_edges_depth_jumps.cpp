@@ -48,6 +48,8 @@ TEST(PerceptionEdgesDepthJumps, NosingsOfADescendingFlight) {
       EXPECT_EQ(e.edge.source, EdgeSource::DepthJump);
       EXPECT_EQ(e.edge.type, EdgeType::Convex);
       EXPECT_GE(e.t_max - e.t_min, cfg.stair.min_step_width_m);
+      // The observation's edge is the nosing itself, at the jump's pixel rows (yaw 0: the axis is x).
+      EXPECT_NEAR(0.5f * (e.edge.start.x() + e.edge.end.x()), e.nosing_s, 1e-4f);
       for (const Eigen::Vector3d& n : all_nosings)
         if (std::abs(e.s - n.x()) < 0.04 && std::abs(e.z - n.z()) < 0.03) {
           ++matched_edges;

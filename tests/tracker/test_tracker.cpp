@@ -458,21 +458,9 @@ TEST(Tracker, AFrameWithoutStepsIsPlacedByTheRisersInView) {
   EXPECT_EQ(m.observations_fused, fused) << "not merged";
 }
 
-// Past a flight's last steps going down perception sees one step, no staircase, and no riser (they
-// face away): the tracker placed the camera by the motion prior alone, 4-6 cm off as a robot tipped
-// over the last nosing (the wrong step beneath in 3 frames). The nosings' depth jumps, published in
-// every observation, place it on the model.
-TEST(Tracker, WithoutStepsTheNosingsDepthJumpsPlaceTheCamera) {
-  ObservationMaker maker(kStair, 13);
-  Tracker tracker;
-  const auto cams = walk(kStair, false, 0.3, 30.0);
-  size_t k = 0;
-  for (; cams[k].position_m.x() > kStair.nosing_x(3); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
-  ASSERT_EQ(tracker.model().flights.size(), 1u);
-  // The next frame, but the camera 6 cm on where the prior expects 1 cm: its nosings as depth jumps, no steps.
-  const size_t j = k + 6;
-  Observation obs = maker.make(cams[j], static_cast<int64_t>(k) * 33333);
-  ASSERT_FALSE(obs.steps.empty());
+// What perception publishes of a frame in which it found no staircase: its steps' nosings only as
+// the depth jumps (convex edges across the flight, in every observation), the planes kept.
+void as_depth_jumps_only(Observation& obs) {
   for (const Step& st : obs.steps) {
     Edge e;
     e.type = EdgeType::Convex;
@@ -482,10 +470,53 @@ TEST(Tracker, WithoutStepsTheNosingsDepthJumpsPlaceTheCamera) {
     obs.edges.push_back(e);
   }
   obs.steps.clear();
+}
+
+// Past a flight's last steps going down perception sees one step, no staircase, and no riser (they
+// face away): the tracker placed the camera by the motion prior alone, 4-6 cm off as a robot tipped
+// over the last nosing (the wrong step beneath in 3 frames). The nosings' depth jumps place it.
+TEST(Tracker, WithoutStepsTheNosingsDepthJumpsPlaceTheCamera) {
+  ObservationMaker maker(kStair, 13);
+  Tracker tracker;
+  const auto cams = walk(kStair, false, 0.3, 30.0);
+  size_t k = 0;
+  for (; cams[k].position_m.x() > kStair.nosing_x(3); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  ASSERT_EQ(tracker.model().flights.size(), 1u);
+  // The next frame, but the camera 6 cm on where the prior expects 1 cm.
+  const size_t j = k + 6;
+  Observation obs = maker.make(cams[j], static_cast<int64_t>(k) * 33333);
+  ASSERT_FALSE(obs.steps.empty());
+  as_depth_jumps_only(obs);
   const StairModel& m = tracker.update(obs);
   ASSERT_TRUE(m.camera_valid) << m.status;
   EXPECT_NE(m.status.find("nosings in view"), std::string::npos) << m.status;
   const Eigen::Vector3d& c = cams[j].position_m;
+  EXPECT_NEAR(m.camera_position_m.x() - m.flights[0].steps[0].nosing_m.x(), c.x() - kStair.nosing_x(0), 0.02)
+      << m.status;
+}
+
+// The motion prior starts from where the camera was last placed: a robot that slowed as it tipped
+// over a flight's last nosing was placed on the nosings in view, and the next frame with nothing in
+// view was put 12 cm on, extrapolated from the last registration.
+TEST(Tracker, ThePriorStartsFromTheLastPlacement) {
+  ObservationMaker maker(kStair, 14);
+  Tracker tracker;
+  const auto cams = walk(kStair, false, 0.3, 30.0);
+  size_t k = 0;
+  for (; cams[k].position_m.x() > kStair.nosing_x(3); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  // Stopped for 10 frames (the prior expects 1 cm each), only the nosings' jumps in view.
+  for (int n = 1; n <= 10; ++n) {
+    Observation obs = maker.make(cams[k], static_cast<int64_t>(k + n) * 33333);
+    as_depth_jumps_only(obs);
+    ASSERT_NE(tracker.update(obs).status.find("nosings in view"), std::string::npos) << tracker.model().status;
+  }
+  Observation nothing = maker.make(cams[k], static_cast<int64_t>(k + 11) * 33333);
+  nothing.steps.clear();
+  nothing.planes.clear();
+  const StairModel& m = tracker.update(nothing);
+  ASSERT_TRUE(m.camera_valid) << m.status;
+  EXPECT_NE(m.status.find("motion prior"), std::string::npos) << m.status;
+  const Eigen::Vector3d& c = cams[k].position_m;
   EXPECT_NEAR(m.camera_position_m.x() - m.flights[0].steps[0].nosing_m.x(), c.x() - kStair.nosing_x(0), 0.02)
       << m.status;
 }
