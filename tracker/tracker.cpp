@@ -261,16 +261,17 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   }
   // Entirely beyond the model (the next flight seen from a landing): nothing
   // to register against, so the motion prior places it while it is fresh.
-  const bool fresh = with_odometry || since_accept_s <= config_.motion.max_prediction_s;
-  bool dead_reckoned = fresh && reg.within == 0;
   // Or only the level it stands on overlaps the model (that landing, its near part seen before):
   // the level fixes the height and nothing the position along the stair. A whole-step search fitted
   // the next flight onto the last one, its copy (4 false model steps on a two-flight walk).
-  if (fresh && !dead_reckoned && reg.x_inliers == 0)
-    dead_reckoned = foot_agreement_beyond_model(input, map_, with_observed_height(obs, start_pose),
-                                                config_.registration, config_.stair) >= config_.motion.min_inlier_ratio;
+  const bool unplaced = (with_odometry || since_accept_s <= config_.motion.max_prediction_s) &&
+                        (reg.within == 0 || reg.x_inliers == 0);
+  const Pose4 by_prior = unplaced ? with_observed_height(obs, start_pose) : start_pose;
+  const bool dead_reckoned =
+      unplaced && (reg.within == 0 || foot_agreement_beyond_model(input, map_, by_prior, config_.registration,
+                                                                  config_.stair) >= config_.motion.min_inlier_ratio);
   if (dead_reckoned) {
-    reg.pose = with_observed_height(obs, start_pose);
+    reg.pose = by_prior;
     reg.inlier_ratio = 1.0;
   }
   model_.registration_rmse_m = reg.rmse_m;

@@ -54,6 +54,21 @@ void expect_accurate(const Walk& r, const StairGeometry& g, const char* name) {
   EXPECT_LE(a.tread_abs_cm, 1.0) << name;
 }
 
+// Feeds the walk's frames from its first until the camera reaches `x_m` along the stair (going up
+// from below it, going down from above); returns the first frame not fed.
+size_t walk_to(Tracker& tracker, ObservationMaker& maker, const std::vector<CameraState>& cams, double x_m) {
+  const bool up = cams.back().position_m.x() > cams.front().position_m.x();
+  size_t k = 0;
+  for (; k < cams.size() && (up ? cams[k].position_m.x() < x_m : cams[k].position_m.x() > x_m); ++k)
+    tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  return k;
+}
+
+// The published camera's position along the stair from the model's first nosing.
+double camera_past_first_nosing_m(const StairModel& m) {
+  return m.camera_position_m.x() - m.flights[0].steps[0].nosing_m.x();
+}
+
 // Moves everything an observation saw by `off` (a registration gone wrong).
 void shift(Observation& obs, const Eigen::Vector3f& off) {
   for (auto& s : obs.steps) s.nosing_m += off.cast<double>();
@@ -319,8 +334,7 @@ TEST(Tracker, AJumpOfHalfAStepDownTheFlightIsPlacedByTheFloorAtItsFoot) {
   ASSERT_TRUE(m.camera_valid) << m.status;
   const Eigen::Vector3d& c = cams[jump].position_m;
   const double z0 = m.flights[0].steps[0].nosing_m.z() - kStair.nosing_z(0);  // the model's frame vs the stair's
-  EXPECT_NEAR(m.camera_position_m.x() - m.flights[0].steps[0].nosing_m.x(), c.x() - kStair.nosing_x(0), 0.04)
-      << m.status;
+  EXPECT_NEAR(camera_past_first_nosing_m(m), c.x() - kStair.nosing_x(0), 0.04) << m.status;
   EXPECT_NEAR(m.camera_position_m.z() - z0, c.z(), 0.04) << m.status;
 }
 
@@ -336,8 +350,7 @@ TEST(Tracker, TheNextFlightSeenFromALandingAfterAGapIsPlacedBeyondIt) {
   Tracker tracker;
   const auto cams = walk(kTwoFlights, true, 0.6, 30.0);
   const double landing_x = kTwoFlights.nosing_x(5);
-  size_t k = 0;
-  for (; cams[k].position_m.x() < landing_x - 0.5; ++k) tracker.update(before.make(cams[k], static_cast<int64_t>(k) * 33333));
+  size_t k = walk_to(tracker, before, cams, landing_x - 0.5);
   ASSERT_EQ(tracker.model().flights.size(), 1u);
   ASSERT_EQ(tracker.model().flights[0].steps.size(), 6u) << tracker.model().status;
   // 0.8 s without a frame: lost, the motion prior still fresh; then the next flight with the
@@ -415,9 +428,7 @@ TEST(Tracker, AFrameWithoutStepsTakesItsHeightFromTheLevelsInView) {
   ObservationMaker maker(kStair, 11);
   Tracker tracker;
   const auto cams = walk(kStair, true, 0.6, 30.0);
-  size_t k = 0;
-  for (; cams[k].position_m.x() < kStair.nosing_x(2) + 0.1; ++k)
-    tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  const size_t k = walk_to(tracker, maker, cams, kStair.nosing_x(2) + 0.1);
   ASSERT_TRUE(tracker.model().camera_valid);
   CameraState raised = cams[k];
   raised.position_m.z() += 0.06;  // a bob the prior does not know of
@@ -438,9 +449,7 @@ TEST(Tracker, AFrameWithoutStepsIsPlacedByTheRisersInView) {
   ObservationMaker maker(kStair, 12);
   Tracker tracker;
   const auto cams = walk(kStair, true, 0.6, 30.0);
-  size_t k = 0;
-  for (; cams[k].position_m.x() < kStair.nosing_x(3) - 0.03; ++k)
-    tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  const size_t k = walk_to(tracker, maker, cams, kStair.nosing_x(3) - 0.03);
   ASSERT_TRUE(tracker.model().camera_valid);
   const int fused = tracker.model().observations_fused;
   CameraState lurched = cams[k];
@@ -472,6 +481,13 @@ void as_depth_jumps_only(Observation& obs) {
   obs.steps.clear();
 }
 
+// The camera published valid, placed as `how` says, within 2 cm of `c` along the stair.
+void expect_placed(const StairModel& m, const char* how, const CameraState& c) {
+  EXPECT_TRUE(m.camera_valid) << m.status;
+  EXPECT_NE(m.status.find(how), std::string::npos) << m.status;
+  EXPECT_NEAR(camera_past_first_nosing_m(m), c.position_m.x() - kStair.nosing_x(0), 0.02) << m.status;
+}
+
 // Past a flight's last steps going down perception sees one step, no staircase, and no riser (they
 // face away): the tracker placed the camera by the motion prior alone, 4-6 cm off as a robot tipped
 // over the last nosing (the wrong step beneath in 3 frames). The nosings' depth jumps place it.
@@ -479,20 +495,14 @@ TEST(Tracker, WithoutStepsTheNosingsDepthJumpsPlaceTheCamera) {
   ObservationMaker maker(kStair, 13);
   Tracker tracker;
   const auto cams = walk(kStair, false, 0.3, 30.0);
-  size_t k = 0;
-  for (; cams[k].position_m.x() > kStair.nosing_x(3); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  const size_t k = walk_to(tracker, maker, cams, kStair.nosing_x(3));
   ASSERT_EQ(tracker.model().flights.size(), 1u);
   // The next frame, but the camera 6 cm on where the prior expects 1 cm.
   const size_t j = k + 6;
   Observation obs = maker.make(cams[j], static_cast<int64_t>(k) * 33333);
   ASSERT_FALSE(obs.steps.empty());
   as_depth_jumps_only(obs);
-  const StairModel& m = tracker.update(obs);
-  ASSERT_TRUE(m.camera_valid) << m.status;
-  EXPECT_NE(m.status.find("nosings in view"), std::string::npos) << m.status;
-  const Eigen::Vector3d& c = cams[j].position_m;
-  EXPECT_NEAR(m.camera_position_m.x() - m.flights[0].steps[0].nosing_m.x(), c.x() - kStair.nosing_x(0), 0.02)
-      << m.status;
+  expect_placed(tracker.update(obs), "nosings in view", cams[j]);
 }
 
 // The motion prior starts from where the camera was last placed: a robot that slowed as it tipped
@@ -502,8 +512,7 @@ TEST(Tracker, ThePriorStartsFromTheLastPlacement) {
   ObservationMaker maker(kStair, 14);
   Tracker tracker;
   const auto cams = walk(kStair, false, 0.3, 30.0);
-  size_t k = 0;
-  for (; cams[k].position_m.x() > kStair.nosing_x(3); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+  const size_t k = walk_to(tracker, maker, cams, kStair.nosing_x(3));
   // Stopped for 10 frames (the prior expects 1 cm each), only the nosings' jumps in view.
   for (int n = 1; n <= 10; ++n) {
     Observation obs = maker.make(cams[k], static_cast<int64_t>(k + n) * 33333);
@@ -513,12 +522,7 @@ TEST(Tracker, ThePriorStartsFromTheLastPlacement) {
   Observation nothing = maker.make(cams[k], static_cast<int64_t>(k + 11) * 33333);
   nothing.steps.clear();
   nothing.planes.clear();
-  const StairModel& m = tracker.update(nothing);
-  ASSERT_TRUE(m.camera_valid) << m.status;
-  EXPECT_NE(m.status.find("motion prior"), std::string::npos) << m.status;
-  const Eigen::Vector3d& c = cams[k].position_m;
-  EXPECT_NEAR(m.camera_position_m.x() - m.flights[0].steps[0].nosing_m.x(), c.x() - kStair.nosing_x(0), 0.02)
-      << m.status;
+  expect_placed(tracker.update(nothing), "motion prior", cams[k]);
 }
 
 TEST(Tracker, OutOfOrderObservationsAreDroppedAndCounted) {
