@@ -104,7 +104,7 @@ Pose4 Tracker::predict(int64_t utime, const Eigen::Vector3d& to_base_m) const {
   const Accepted& a1 = accepted_.back();
   const Pose4& p1 = a1.pose;
   if (const auto p = odometry_.predict(p1, a1.utime, utime)) return *p;
-  const Accepted& last = placed_ && placed_->utime > a1.utime ? *placed_ : a1;
+  const Accepted& last = placed_ ? *placed_ : a1;  // accept() clears it
   const Accepted& a0 = accepted_.front();
   if (a1.utime == a0.utime || seconds(utime - a1.utime) > config_.motion.max_prediction_s) return last.pose;
   const double dt = seconds(utime - last.utime);
