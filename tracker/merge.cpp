@@ -53,6 +53,7 @@ void update(MapStep& m, const ObservedStep& o, const Pose4& pose, const MergeCon
   if (o.riser_height_m) m.riser_height_m.add(*o.riser_height_m, cap);
   if (o.overhang_m) m.overhang_m.add(*o.overhang_m, cap);
   if (o.tread_far_x_m) m.tread_far_x_m = std::max(m.tread_far_x_m, *o.tread_far_x_m);
+  if (o.tread_depth_m) m.tread_depth_m.add(*o.tread_depth_m, cap);
   if (o.y_min_m) m.y_min_m.add(*o.y_min_m, cap);
   if (o.y_max_m) m.y_max_m.add(*o.y_max_m, cap);
   ++m.confirmations;
@@ -132,6 +133,8 @@ std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& po
     }
     // An inferred rise is perception's prior, not a measurement: the model regularises itself.
     if (!(s.inferred & kStepRiserInferred)) o.riser_height_m = s.riser_height_m;
+    // A tread cut by the view or by the step above it shows only part of its depth: no measurement.
+    if (!(s.inferred & kStepTreadPartial)) o.tread_depth_m = s.tread_depth_m;
     out.push_back(o);
   }
   return out;

@@ -20,6 +20,7 @@ struct StairPriorConfig;
 struct ObservedStep {
   std::optional<double> riser_x_m, tread_z_m, riser_height_m, tread_far_x_m;
   std::optional<double> overhang_m;  // the nosing's edge before the riser's face (nosing_overhang.hpp)
+  std::optional<double> tread_depth_m;  // perception's nosing-to-nosing depth; none where the tread was cut
   Eigen::Vector3d nosing_m = Eigen::Vector3d::Zero();
   std::optional<double> y_min_m, y_max_m;
   const Plane* riser = nullptr;

@@ -60,9 +60,15 @@ Step model_step(const std::vector<const MapStep*>& steps, size_t i, double first
   double riser = first_riser;
   if (s.riser_height_m.known()) riser = s.riser_height_m.value;
   else if (i > 0) riser = s.z() - steps[i - 1]->z();
-  const double far = i + 1 < steps.size() ? steps[i + 1]->x() : s.tread_far_x_m;
-  const double tread = far - s.x();
-  const bool known_tread = i + 1 < steps.size() || s.tread_far_x_m > s.x();
+  // The tread reaches to the next step's riser; on the last step the model
+  // publishes, to the next nosing perception saw in the same frame. Where every
+  // view of it was cut (the view's edge, range, the step above hiding its back
+  // going down), what was seen is a lower bound: a landing if deeper than any
+  // tread, else unknown (a descent's 33 cm tread was published as 6 cm).
+  const bool last = i + 1 == steps.size();
+  const double seen = s.tread_far_x_m - s.x();
+  const double tread = !last ? steps[i + 1]->x() - s.x() : s.tread_depth_m.known() ? s.tread_depth_m.value : seen;
+  const bool known_tread = !last || s.tread_depth_m.known() || seen > c.landing_min_depth_m;
   const double width = s.y_min_m.known() && s.y_max_m.known() ? s.y_max_m.value - s.y_min_m.value : 0.0;
   const double y_left = s.y_max_m.known() ? s.y_max_m.value : camera_y + 0.5 * width;
   out.riser_height_m = riser;

@@ -30,9 +30,10 @@ struct MapStep {
   RunningMean edge_z_m;        // nosing height where no tread plane was seen: a depth jump, or a riser's top
                                // (under a nosing overhang the slab's underside, a slab's thickness low)
   RunningMean riser_height_m;  // as perception measured it (first step, gaps)
+  RunningMean tread_depth_m;   // as perception measured it, nosing to nosing (the last step the model publishes)
   RunningMean overhang_m;      // the nosing's edge before the riser's face, where its slab was seen
   RunningMean y_min_m, y_max_m;  // lateral bounding box
-  double tread_far_x_m = -1e9;   // farthest observed back edge of the tread
+  double tread_far_x_m = -1e9;   // farthest observed back edge of the tread (of its visible part: a lower bound)
   int confirmations = 0;
   bool reconstructed = false;    // filled in between seen steps, never observed
   bool on_seen_floor = false;    // its riser stands on a level seen deeper than any tread (a floor or a

@@ -105,6 +105,7 @@ class ObservationMaker {
         obs.planes.push_back(plane(PlaneKind::Tread, Eigen::Vector3d(X, y_hi, Z), Eigen::Vector3d(x_far - X, 0, 0),
                                    y_hi - y_lo, cam.position_m, to_cam));
         s.tread_depth_m = x_far - X;
+        if (x_far < X + T) s.inferred |= kStepTreadPartial;  // as perception flags a cut tread
       }
       if (!descending) {
         s.riser_plane = static_cast<int>(obs.planes.size());

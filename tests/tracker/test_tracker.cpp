@@ -525,6 +525,49 @@ TEST(Tracker, ThePriorStartsFromTheLastPlacement) {
   expect_placed(tracker.update(nothing), "motion prior", cams[k]);
 }
 
+// Removes the observation's nearest step and its planes (a step the camera did not see).
+void drop_nearest_step(Observation& obs) {
+  if (obs.steps.empty()) return;
+  const Step gone = obs.steps.front();
+  obs.steps.erase(obs.steps.begin());
+  for (int plane : {std::max(gone.riser_plane, gone.tread_plane), std::min(gone.riser_plane, gone.tread_plane)}) {
+    if (plane < 0) continue;
+    obs.planes.erase(obs.planes.begin() + plane);
+    for (Step& s : obs.steps)
+      for (int* index : {&s.riser_plane, &s.tread_plane})
+        if (*index > plane) --*index;
+  }
+}
+
+// Going down, each step hides the back of the tread below it: what is seen of
+// that tread is no measurement of its depth. A model whose top step was seen
+// only so publishes it without a depth, not with the part in view.
+TEST(Tracker, ATreadSeenOnlyInPartIsPublishedWithoutADepth) {
+  ObservationMaker maker(kStair, 4);
+  Tracker tracker;
+  const auto cams = walk(kStair, false, 0.6, 30.0);
+  const size_t top = kStair.riser_m.size() - 1;
+  int fed = 0;
+  for (size_t k = 0; k < cams.size() && cams[k].position_m.x() > kStair.nosing_x(top) + 0.3; ++k, ++fed) {
+    Observation obs = maker.make(cams[k], static_cast<int64_t>(k) * 33333);
+    drop_nearest_step(obs);  // the top step, hidden from the whole walk
+    for (const Step& s : obs.steps) ASSERT_TRUE(s.inferred & kStepTreadPartial);
+    tracker.update(obs);
+  }
+  const StairModel& m = tracker.model();
+  ASSERT_GT(fed, 30);
+  ASSERT_TRUE(m.confirmed);
+  ASSERT_EQ(m.flights.size(), 1u);
+  const auto& steps = m.flights[0].steps;
+  ASSERT_GE(steps.size(), 3u);
+  for (size_t i = 0; i + 1 < steps.size(); ++i) {
+    ASSERT_TRUE(steps[i].tread_depth_m) << i;
+    EXPECT_NEAR(*steps[i].tread_depth_m, 0.28, 0.01) << i;
+  }
+  EXPECT_FALSE(steps.back().tread_depth_m) << *steps.back().tread_depth_m << " m published for a tread never seen whole";
+  EXPECT_FALSE(steps.back().landing);
+}
+
 TEST(Tracker, OutOfOrderObservationsAreDroppedAndCounted) {
   ObservationMaker maker(kStair, 5);
   Tracker tracker;
