@@ -195,6 +195,9 @@ struct GravityConfig {
   float parallel_deg = 4.0f;                 // deg; normals this close count as parallel
   float prior_max_deg = 20.0f;               // deg; up may turn this much from the previous frame's
   double prior_max_gap_s = 1.0;              // s; after a longer gap the previous up is forgotten
+  double carry_max_s = 0.3;                  // s; a pitch no plane measures (walls along the view, no
+                                             // tread) is the last measured one this long at most: a hand-
+                                             // held camera sways ~5 deg/s, 1.5 deg (consensus_deg) in 0.3 s
   float min_support_fraction = 0.1f;         // with a prior: treads with less support than this
                                              // fraction of the largest vertical family yield to it
   float second_family_min_angle_deg = 30.0f;  // deg; a second vertical family (risers and a wall) must
@@ -217,6 +220,7 @@ struct GravityConfig {
     v("parallel_deg", parallel_deg, 0.0f, 45.0f);
     v("prior_max_deg", prior_max_deg, 0.0f, 180.0f);
     v("prior_max_gap_s", prior_max_gap_s, 0.0, 3600.0);
+    v("carry_max_s", carry_max_s, 0.0, 3600.0);
     v("min_support_fraction", min_support_fraction, 0.0f, 1.0f);
     v("second_family_min_angle_deg", second_family_min_angle_deg, 1.0f, 90.0f);
     v("consensus_deg", consensus_deg, 0.01f, 45.0f);

@@ -145,10 +145,27 @@ Eigen::Vector3f consensus_up(const std::vector<Segment>& segments, const Eigen::
   return refine(segments, sum.squaredNorm() > 0.0f ? sum.normalized() : best, cfg);
 }
 
+// Whether this frame's horizontal planes near `up` measure its tilt along the
+// horizontal direction `d` to within consensus_deg: each plane knows the tilt
+// along its in-plane axes (information_per_spread times its spread along each).
+bool tilt_measured_along(const std::vector<Segment>& segments, const Eigen::Vector3f& up, const Eigen::Vector3f& d,
+                         const GravityConfig& cfg) {
+  const float cos_near = std::cos(cfg.refine_first_deg * static_cast<float>(M_PI) / 180.0f);
+  double info = 0.0;
+  for (const Segment& s : segments) {
+    if (s.bent || s.normal.dot(up) < cos_near || !knows_normal_within_consensus(s, cfg)) continue;
+    double along = 0.0;
+    for (int k = 0; k < 2; ++k) along += s.spread_m2[k] * std::pow(static_cast<double>(s.axis[k].dot(d)), 2);
+    info += information_per_spread(s, cfg) * along;
+  }
+  return info >= consensus_information(cfg);
+}
+
 }  // namespace
 
 std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const GravityConfig& cfg,
-                                           const std::optional<Eigen::Vector3f>& prior) {
+                                           const std::optional<Eigen::Vector3f>& prior, bool* carried) {
+  if (carried) *carried = false;
   const float deg = static_cast<float>(M_PI) / 180.0f;
   const float cos_tilt = std::cos(cfg.max_tilt_from_image_up_deg * deg);
   const float cos_par = std::cos(cfg.parallel_deg * deg);
@@ -191,7 +208,21 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   // edges, and a wall says nothing of pitch along it), and treads then fit it
   // where they agree (a level camera's far treads and floor: walls and risers,
   // noisy at 3 m, set it off by a degree or two).
-  return consensus_up(segments, up, cfg, near_up);
+  const Eigen::Vector3f fitted = consensus_up(segments, up, cfg, near_up);
+  if (v2) return fitted;
+  // One vertical family fixes up only across its planes; along them up is the
+  // previous frame's unless this frame's treads measure it: carried. Only a
+  // pitch counts (the tilt along the view, where a flight is measured): an
+  // error e there changes each rise by run * tan(e), 0.7 cm a degree on a 0.4 m
+  // run; one across the view only what lies side by side.
+  Eigen::Vector3f along = fitted.cross(v1->normal);
+  const Eigen::Vector3f forward = Eigen::Vector3f::UnitZ() - fitted.z() * fitted;  // optical axis, levelled
+  if (carried && along.norm() > 0.0f && forward.norm() > 0.0f) {
+    along.normalize();
+    const bool pitch = std::abs(along.dot(forward.normalized())) >= std::sqrt(0.5f);
+    *carried = pitch && !tilt_measured_along(segments, fitted, along, cfg);
+  }
+  return fitted;
 }
 
 CameraPose pose_from_up(const Eigen::Vector3f& up_optical) {

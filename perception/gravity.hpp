@@ -13,9 +13,13 @@ namespace stairs {
 // plane near it), the one most planes agree with (parallel or perpendicular within consensus_deg)
 // chooses the treads that up is fitted to: least squares, each weighted by how well its fit knows
 // its normal (thesis Algorithm 4 weights by support alone). Segments marked bent
-// (concave_corners.hpp) take no part. Nothing if none fits.
+// (concave_corners.hpp) take no part. Nothing if none fits. `carried` (when
+// given): up's pitch (its tilt along the levelled optical axis) is the prior's,
+// measured by no plane of this frame (walls along the view, no tread that knows
+// its normal).
 std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const GravityConfig& cfg,
-                                           const std::optional<Eigen::Vector3f>& prior = std::nullopt);
+                                           const std::optional<Eigen::Vector3f>& prior = std::nullopt,
+                                           bool* carried = nullptr);
 
 // Pose from the up vector: pitch, roll (DESIGN.md conventions) and
 // gravity_rotation (optical -> x forward, y left, z up). Height and distance

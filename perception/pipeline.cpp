@@ -82,16 +82,25 @@ Observation Pipeline::process(const DepthImage& frame) {
   clock.mark("concave_corners");
   const int64_t gap_us = frame.utime - prior_utime_;
   if (gap_us < 0 || gap_us > cfg_.gravity.prior_max_gap_s * 1e6) up_prior_.reset();
-  const std::optional<Eigen::Vector3f> planes_up = estimate_up(segments, cfg_.gravity, up_prior_);
+  bool carried = false;
+  std::optional<Eigen::Vector3f> planes_up = estimate_up(segments, cfg_.gravity, up_prior_, &carried);
+  // A tilt no plane measures is carried from the last frame that measured it,
+  // for a while only: the camera turns meanwhile.
+  const bool carried_too_long =
+      planes_up && carried && frame.utime - measured_utime_ > cfg_.gravity.carry_max_s * 1e6;
+  if (carried_too_long) planes_up.reset();
   if (planes_up) {
     up_prior_ = planes_up;
     prior_utime_ = frame.utime;
+    if (!carried) measured_utime_ = frame.utime;
   }
   const FusedUp fused = fuse_up(planes_up, imu_.up_at(frame.utime), cfg_.imu);
   const auto& up = fused.up;
   clock.mark("gravity");
   if (!up) {
-    obs.status = "no horizontal plane: pose unknown";
+    obs.status = carried_too_long ? "pitch unmeasured (walls along the view, no level plane that fixes it) for "
+                                    "longer than gravity.carry_max_s: pose unknown"
+                                  : "no horizontal plane: pose unknown";
     clock.finish();
     return obs;
   }

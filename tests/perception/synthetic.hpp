@@ -59,4 +59,24 @@ inline DepthImage render_stairs(int w, int h, double pitch_deg, double roll_deg,
   return img;
 }
 
+// A corridor: walls at y = +-half_width_m, and a floor at z = -height_m only
+// when `floor` (without it the camera sees walls alone, as over a descent whose
+// treads lie beyond range).
+inline DepthImage render_corridor(int w, int h, double pitch_deg, double height_m, double half_width_m, bool floor) {
+  DepthImage img;
+  img.K = {w, h, 525.0 * w / 640, 525.0 * w / 640, (w - 1) / 2.0, (h - 1) / 2.0};
+  img.depth.assign(static_cast<size_t>(w) * h, 0);
+  const Eigen::Matrix3d R = optical_to_world(pitch_deg, 0.0);
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u < w; ++u) {
+      const Eigen::Vector3d d = R * Eigen::Vector3d((u - img.K.cx) / img.K.fx, (v - img.K.cy) / img.K.fy, 1.0);
+      double t = std::numeric_limits<double>::infinity();
+      if (d.y() != 0) t = std::min(t, (d.y() > 0 ? half_width_m : -half_width_m) / d.y());
+      const double t_floor = d.z() < 0 ? -height_m / d.z() : std::numeric_limits<double>::infinity();
+      if (t_floor < t) t = floor ? t_floor : std::numeric_limits<double>::infinity();
+      if (t < 4.0) img.depth[static_cast<size_t>(v) * w + u] = static_cast<uint16_t>(t * 1000);
+    }
+  return img;
+}
+
 }  // namespace stairs::test

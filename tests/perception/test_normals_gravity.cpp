@@ -260,9 +260,18 @@ TEST(PerceptionGravity, FarSliversBesideParallelWallsDoNotSetPitch) {
                                      segment(-Y, 2200, 0.43, 0.49, 0.001f, 1.9f),
                                      segment(tilted, 151, 0.063, 0.35, 0.0056f, 4.4f),
                                      segment(tilted, 38, 0.06, 0.11, 0.005f, 4.4f)};
-  const auto up = estimate_up(segs, GravityConfig{}, true_up(pitch));
+  bool carried = false;
+  const auto up = estimate_up(segs, GravityConfig{}, true_up(pitch), &carried);
   ASSERT_TRUE(up.has_value());
   EXPECT_GT(up->dot(true_up(pitch)), std::cos(0.5 * M_PI / 180));
+  EXPECT_TRUE(carried);  // the pitch is the prior's: the pipeline keeps it gravity.carry_max_s at most
+  // A tread near the camera that knows its normal measures the pitch itself.
+  std::vector<Segment> with_tread = segs;
+  with_tread.push_back(segment(Z, 900, 0.12, 0.5, 0.0012f, 1.2f));
+  const auto measured = estimate_up(with_tread, GravityConfig{}, true_up(pitch - 1.0), &carried);
+  ASSERT_TRUE(measured.has_value());
+  EXPECT_GT(measured->dot(true_up(pitch)), std::cos(0.1 * M_PI / 180));
+  EXPECT_FALSE(carried);
 }
 
 TEST(PerceptionGravity, ABentTreadIsOutvotedByThePlanesThatAgree) {

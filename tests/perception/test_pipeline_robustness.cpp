@@ -90,5 +90,45 @@ TEST(PerceptionRobustness, NoStaircaseSaysWhatWasMissing) {
   EXPECT_EQ(curb.status, "no staircase: 1 step in view, a staircase needs 2");
 }
 
+// Between two walls with no level plane in view, the walls fix roll and the
+// previous frame's up the pitch: carried while the camera may not have turned
+// far (gravity.carry_max_s), then unknown. The camera here pitches 5 deg/s.
+TEST(PipelineGravity, APitchNoPlaneMeasuresIsCarriedOnlyForAWhile) {
+  Pipeline p;
+  const double carry_s = p.config().gravity.carry_max_s;
+  Observation o = p.process([] {
+    DepthImage f = test::render_corridor(320, 240, -12.0, 1.2, 0.6, true);
+    f.utime = 0;
+    return f;
+  }());
+  ASSERT_TRUE(o.camera.valid) << o.status;
+  EXPECT_NEAR(o.camera.pitch_deg, -12.0, 0.3);
+  int carried = 0, unknown = 0;
+  for (int k = 1; k <= 10; ++k) {
+    const double t_s = 0.1 * k;
+    DepthImage f = test::render_corridor(320, 240, -12.0 - 5.0 * t_s, 1.2, 0.6, false);
+    f.utime = static_cast<int64_t>(t_s * 1e6);
+    o = p.process(f);
+    if (t_s <= carry_s + 1e-9) {
+      ++carried;
+      EXPECT_TRUE(o.camera.valid) << t_s << " s: " << o.status;
+      EXPECT_NEAR(o.camera.pitch_deg, -12.0, 0.3) << t_s << " s";  // the floor's, carried
+    } else {
+      ++unknown;
+      EXPECT_FALSE(o.camera.valid) << t_s << " s: pitch " << o.camera.pitch_deg << ", true " << -12.0 - 5.0 * t_s;
+      EXPECT_NE(o.status.find("carry_max_s"), std::string::npos) << o.status;
+      EXPECT_TRUE(o.steps.empty());
+    }
+  }
+  EXPECT_GT(carried, 0);
+  EXPECT_GT(unknown, 0);
+  // The floor back in view measures up again.
+  DepthImage f = test::render_corridor(320, 240, -17.5, 1.2, 0.6, true);
+  f.utime = 1100000;
+  o = p.process(f);
+  ASSERT_TRUE(o.camera.valid) << o.status;
+  EXPECT_NEAR(o.camera.pitch_deg, -17.5, 0.3);
+}
+
 }  // namespace
 }  // namespace stairs
