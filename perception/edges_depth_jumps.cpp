@@ -82,6 +82,21 @@ std::vector<JumpPoint> jump_points(const NormalGrid& g, const DepthImage& f, con
       const float jump = std::max(cfg.jump_min_m, cfg.jump_ratio * zc);
       if (zf - zc < jump) continue;
       const Eigen::Vector3f& p = g.points[c];
+      // A cell at the grid's border has no normal for the level test below;
+      // the line to the cell under it tells a level (within level_tol_deg of
+      // horizontal) from a riser's top. Seen from above, the ray past an edge
+      // descends: beyond a level's edge it meets what lies below. A farther
+      // cell on that level (within depth noise) or above it is the level
+      // receding at a grazing angle, or a wall rising from it: no edge (a
+      // robot's far floor at the image's top made a 3.4 m "tread").
+      if (!g.has_normal[c] && gy + 1 < g.height && g.has_point[g.index(gx, gy + 1)]) {
+        const float height = up.dot(p);
+        const Eigen::Vector3f d = p - g.points[g.index(gx, gy + 1)];
+        const float rise = std::abs(up.dot(d)), run = (d - up.dot(d) * up).norm();
+        const bool on_a_level = rise < run * std::tan(cfg.level_tol_deg * static_cast<float>(M_PI) / 180.0f);
+        const float noise = cfg.row_tolerance_m + cfg.row_tolerance_per_m2 * zc * zc;
+        if (height < 0.0f && on_a_level && up.dot(g.points[g.index(gx, above)]) > height - noise) continue;
+      }
       Eigen::Vector3f at_row = p;
       const Eigen::Vector2f px(gx * g.cell_px + half, gy * g.cell_px + half);
       if (g.has_normal[c]) {

@@ -85,27 +85,35 @@ TEST(PerceptionEdgesDepthJumps, NosingsOfADescendingFlight) {
 // A robot's camera 0.6 m above a plain floor, looking 15 deg down, depth to
 // 4.5 m: far away the floor's depth grows by more than a jump from one cell
 // to the next (a D435 at 3-5 m gave "nosings" there, and a 4 m "landing" past
-// the bottom of a flight), yet each far cell lies on the near cell's level: no edge.
+// the bottom of a flight), yet each far cell lies on the near cell's level: no
+// edge. Looking 33 deg down the floor reaches the image's top rows, whose
+// cells have no normal (the grid's border): there too (a robot's D435 at the
+// foot of a flight made a 3.4 m "tread" of it).
 TEST(PerceptionEdgesDepthJumps, AFarFloorAtAGrazingAngleIsNoNosing) {
-  DepthImage img = test::render_stairs(640, 480, -15, 0, 0.6, 0);
-  for (uint16_t& d : img.depth)
-    if (d > 4500) d = 0;
-  const PerceptionConfig cfg;
-  NormalGrid grid;
-  compute_normals(img, cfg.normals, grid);
-  const Eigen::Vector3f up = (test::optical_to_world(-15, 0).transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
-  const Eigen::Matrix3f R = pose_from_up(up).gravity_rotation.toRotationMatrix().cast<float>();
-  // The cells do jump by more than the threshold far away.
-  int steep = 0;
-  for (int gy = 1; gy < grid.height; ++gy) {
-    const int c = grid.index(grid.width / 2, gy), a = grid.index(grid.width / 2, gy - 1);
-    if (grid.has_point[c] && grid.has_point[a] &&
-        grid.points[a].z() - grid.points[c].z() >
-            std::max(cfg.edges_depth_jumps.jump_min_m, cfg.edges_depth_jumps.jump_ratio * grid.points[c].z()))
-      ++steep;
+  for (const double pitch : {-15.0, -33.0}) {
+    DepthImage img = test::render_stairs(640, 480, pitch, 0, 0.6, 0);
+    for (uint16_t& d : img.depth)
+      if (d > 4500) d = 0;
+    const PerceptionConfig cfg;
+    NormalGrid grid;
+    compute_normals(img, cfg.normals, grid);
+    const Eigen::Vector3f up = (test::optical_to_world(pitch, 0).transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
+    const Eigen::Matrix3f R = pose_from_up(up).gravity_rotation.toRotationMatrix().cast<float>();
+    // The cells do jump by more than the threshold far away.
+    int steep = 0, top_row_points = 0;
+    for (int gy = 1; gy < grid.height; ++gy) {
+      const int c = grid.index(grid.width / 2, gy), a = grid.index(grid.width / 2, gy - 1);
+      if (grid.has_point[c] && grid.has_point[a] &&
+          grid.points[a].z() - grid.points[c].z() >
+              std::max(cfg.edges_depth_jumps.jump_min_m, cfg.edges_depth_jumps.jump_ratio * grid.points[c].z()))
+        ++steep;
+    }
+    for (int gx = 0; gx < grid.width; ++gx) top_row_points += grid.has_point[grid.index(gx, 0)];
+    ASSERT_GT(steep, 3) << pitch;
+    if (pitch < -30) ASSERT_GT(top_row_points, grid.width / 2) << "the floor reaches the top border";
+    EXPECT_TRUE(depth_jump_edges(grid, img, R, 0.0f, cfg.edges_depth_jumps, cfg.stair.min_step_width_m).empty())
+        << pitch;
   }
-  ASSERT_GT(steep, 3);
-  EXPECT_TRUE(depth_jump_edges(grid, img, R, 0.0f, cfg.edges_depth_jumps, cfg.stair.min_step_width_m).empty());
 }
 
 // Looking down a flight turned 12 deg from it: the nosings' lines, either sign,
