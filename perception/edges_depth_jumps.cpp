@@ -71,6 +71,7 @@ std::vector<JumpPoint> jump_points(const NormalGrid& g, const DepthImage& f, con
   const float half = 0.5f * static_cast<float>(g.cell_px);
   const Eigen::Vector3f up = R.row(2).transpose();  // optical frame
   const float level_cos = std::cos(cfg.level_tol_deg * static_cast<float>(M_PI) / 180.0f);
+  const float level_tan = std::tan(cfg.level_tol_deg * static_cast<float>(M_PI) / 180.0f);
   for (int gx = 0; gx < g.width; ++gx) {
     for (int gy = 1; gy < g.height; ++gy) {
       const int c = g.index(gx, gy);
@@ -93,7 +94,7 @@ std::vector<JumpPoint> jump_points(const NormalGrid& g, const DepthImage& f, con
         const float height = up.dot(p);
         const Eigen::Vector3f d = p - g.points[g.index(gx, gy + 1)];
         const float rise = std::abs(up.dot(d)), run = (d - up.dot(d) * up).norm();
-        const bool on_a_level = rise < run * std::tan(cfg.level_tol_deg * static_cast<float>(M_PI) / 180.0f);
+        const bool on_a_level = rise < run * level_tan;
         const float noise = cfg.row_tolerance_m + cfg.row_tolerance_per_m2 * zc * zc;
         if (height < 0.0f && on_a_level && up.dot(g.points[g.index(gx, above)]) > height - noise) continue;
       }

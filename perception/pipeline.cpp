@@ -84,7 +84,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   if (gap_us < 0 || gap_us > cfg_.gravity.prior_max_gap_s * 1e6) up_prior_.reset();
   bool carried = false;
   std::optional<Eigen::Vector3f> planes_up = estimate_up(segments, cfg_.gravity, up_prior_, &carried);
-  // A tilt no plane measures is carried from the last frame that measured it,
+  // A pitch no plane measures is carried from the last frame that measured it,
   // for a while only: the camera turns meanwhile.
   const bool carried_too_long =
       planes_up && carried && frame.utime - measured_utime_ > cfg_.gravity.carry_max_s * 1e6;

@@ -35,7 +35,7 @@ class Pipeline {
   ConcaveCornersScratch corners_;  // reused buffers
   std::optional<Eigen::Vector3f> up_prior_;  // optical frame, of the frame at prior_utime_
   int64_t prior_utime_ = 0;
-  int64_t measured_utime_ = 0;  // the last frame whose planes measured up in every direction
+  int64_t measured_utime_ = 0;  // the last frame whose planes measured its pitch (none carried)
   ImuGravity imu_;
 };
 
