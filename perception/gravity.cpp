@@ -67,17 +67,15 @@ bool knows_normal_within_consensus(const Segment& s, const GravityConfig& cfg) {
   return information(s, cfg) >= consensus_information(cfg);
 }
 
-// The up that the horizontal planes within tol_deg of `up` fit best: up is
+// What the horizontal planes within tol_deg of `up` know of its tilt: up is
 // perpendicular to each plane's in-plane axes, each constraint weighted by how
 // well the plane's fit knows it (information_per_spread: a thin strip's tilt
-// across it is poorly known, a large flat floor's well).
-// Directions the planes constrain less than cfg.refine_prior_fraction of their
-// total keep `up`. Without planes near it, `up` itself.
-Eigen::Vector3f fit_up(const std::vector<Segment>& segments, const Eigen::Vector3f& up, float tol_deg,
-                       const GravityConfig& cfg) {
+// across it is poorly known, a large flat floor's well). Planes that know their
+// normal to worse than consensus_deg take no part. Zero without any.
+Eigen::Matrix3d tilt_information(const std::vector<Segment>& segments, const Eigen::Vector3f& up, float tol_deg,
+                                 const GravityConfig& cfg) {
   const float cos_tol = std::cos(tol_deg * static_cast<float>(M_PI) / 180.0f);
   Eigen::Matrix3d info = Eigen::Matrix3d::Zero();
-  bool any = false;
   for (const Segment& s : segments) {
     if (s.bent || s.normal.dot(up) < cos_tol) continue;
     if (!knows_normal_within_consensus(s, cfg)) continue;
@@ -86,9 +84,17 @@ Eigen::Vector3f fit_up(const std::vector<Segment>& segments, const Eigen::Vector
       const Eigen::Vector3d e = s.axis[k].cast<double>();
       info += per_spread * s.spread_m2[k] * e * e.transpose();
     }
-    any = true;
   }
-  if (!any || !(info.trace() > 0.0)) return up;
+  return info;
+}
+
+// The up that the horizontal planes within tol_deg of `up` fit best (tilt_information).
+// Directions the planes constrain less than cfg.refine_prior_fraction of their
+// total keep `up`. Without planes near it, `up` itself.
+Eigen::Vector3f fit_up(const std::vector<Segment>& segments, const Eigen::Vector3f& up, float tol_deg,
+                       const GravityConfig& cfg) {
+  Eigen::Matrix3d info = tilt_information(segments, up, tol_deg, cfg);
+  if (!(info.trace() > 0.0)) return up;
   const Eigen::Vector3d u0 = up.cast<double>();
   info += cfg.refine_prior_fraction * info.trace() * (Eigen::Matrix3d::Identity() - u0 * u0.transpose());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(info);
@@ -146,19 +152,11 @@ Eigen::Vector3f consensus_up(const std::vector<Segment>& segments, const Eigen::
 }
 
 // Whether this frame's horizontal planes near `up` measure its tilt along the
-// horizontal direction `d` to within consensus_deg: each plane knows the tilt
-// along its in-plane axes (information_per_spread times its spread along each).
+// horizontal direction `d` to within consensus_deg.
 bool tilt_measured_along(const std::vector<Segment>& segments, const Eigen::Vector3f& up, const Eigen::Vector3f& d,
                          const GravityConfig& cfg) {
-  const float cos_near = std::cos(cfg.refine_first_deg * static_cast<float>(M_PI) / 180.0f);
-  double info = 0.0;
-  for (const Segment& s : segments) {
-    if (s.bent || s.normal.dot(up) < cos_near || !knows_normal_within_consensus(s, cfg)) continue;
-    double along = 0.0;
-    for (int k = 0; k < 2; ++k) along += s.spread_m2[k] * std::pow(static_cast<double>(s.axis[k].dot(d)), 2);
-    info += information_per_spread(s, cfg) * along;
-  }
-  return info >= consensus_information(cfg);
+  const Eigen::Vector3d dd = d.cast<double>();
+  return dd.dot(tilt_information(segments, up, cfg.refine_first_deg, cfg) * dd) >= consensus_information(cfg);
 }
 
 }  // namespace
