@@ -88,6 +88,8 @@ struct MotionConfig {
                                                     // that surface may be the next level ahead)
   double predict_camera_s = 1.0;  // s; an update that registers nothing (no steps in view, a rejected
                                   // registration) still places the camera by the motion prior this long
+  double max_accel_mps2 = 1.0;  // m/s^2; a walker's or a climbing robot's speed along the stair changes
+                                // this fast at most (~0.1 g): the prior's position may be a*t^2/2 off
 
   template <class V>
   void visit(V& v) {
@@ -98,6 +100,7 @@ struct MotionConfig {
     v("max_prediction_s", max_prediction_s, 0.0, 60.0);
     v("observed_height_max_riser_fraction", observed_height_max_riser_fraction, 0.0, 2.0);
     v("predict_camera_s", predict_camera_s, 0.0, 60.0);
+    v("max_accel_mps2", max_accel_mps2, 0.0, 100.0);
   }
 };
 

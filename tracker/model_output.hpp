@@ -19,7 +19,9 @@ struct StairPriorConfig;
 // the caller. `camera` is the gravity-aligned camera frame -> W pose; `gravity_rotation` is the
 // observation's optical -> gravity. `overhang_m`: the nosing's edge stands this far before the face of
 // a seen riser (nosing_overhang.hpp); the published nosings and the step beneath use the edge.
-void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid,
+// `x_uncertainty_m`: how far off the camera's position along the stair may be (0 where measured); the
+// surface beneath is unknown where a nosing lies that close.
+void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid, double x_uncertainty_m,
                 const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
                 const StairPriorConfig& stair, const MountConfig& mount, double overhang_m, StairModel& out);
 

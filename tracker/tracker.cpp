@@ -69,6 +69,8 @@ bool Tracker::seed(const Observation& obs) {
   if (map_.empty()) return false;
   note_floor(obs, observed);
   accepted_.push_back({obs.source_utime, pose, to_base_m(obs)});
+  x_measured_utime_ = obs.source_utime;
+  speed_change_mps_ = 0.0;
   model_.observations_fused = 1;
   model_.state = TrackingState::Ok;
   model_.registration_rmse_m = -1.0;
@@ -120,6 +122,34 @@ Pose4 Tracker::predict(int64_t utime, const Eigen::Vector3d& to_base_m) const {
   b.z() = bl.z() + mean_surface_z_m(map_, b.x(), config_.stair) - mean_surface_z_m(map_, bl.x(), config_.stair);
   p.t_m = b - p.rotation() * to_base_m;
   return p;
+}
+
+// The speed along the stair of the point predict() extrapolates, in the first and the second half
+// of the velocity window: how much it changed is how far off constant velocity may be per second.
+// Halves rather than consecutive poses: the registration noise over one frame interval would
+// dominate (3 mm over 33 ms is 0.1 m/s).
+void Tracker::note_speed_change() {
+  if (accepted_.size() < 3) return;
+  const auto base_x = [](const Accepted& a) { return (a.pose.t_m + a.pose.rotation() * a.to_base_m).x(); };
+  const Accepted &a0 = accepted_.front(), &a1 = accepted_.back();
+  const double t_mid = 0.5 * seconds(a1.utime - a0.utime);
+  const Accepted* mid = &accepted_[1];
+  for (size_t k = 1; k + 1 < accepted_.size(); ++k)
+    if (std::abs(seconds(accepted_[k].utime - a0.utime) - t_mid) < std::abs(seconds(mid->utime - a0.utime) - t_mid))
+      mid = &accepted_[k];
+  const double first = (base_x(*mid) - base_x(a0)) / seconds(mid->utime - a0.utime);
+  const double second = (base_x(a1) - base_x(*mid)) / seconds(a1.utime - mid->utime);
+  speed_change_mps_ = std::abs(second - first);
+}
+
+// How far off the prior's position along the stair may be at `utime`, t after it was last measured:
+// the speed change seen across the last measured velocity window times t, and what the largest
+// plausible acceleration adds since (a robot leaving a flight's last step sped up 7.5 cm past a
+// prior whose window had seen its speed change by 2 cm/s). Odometry measures the motion: then none.
+double Tracker::prior_x_uncertainty_m(int64_t utime, bool with_odometry) const {
+  if (with_odometry) return 0.0;
+  const double t = std::max(0.0, seconds(utime - x_measured_utime_));
+  return speed_change_mps_ * t + 0.5 * config_.motion.max_accel_mps2 * t * t;
 }
 
 // One observation, in explicit states: a time jump back restarts the stream;
@@ -219,12 +249,14 @@ void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool wi
     if (const auto placed = on_planes_in_view(obs, prior)) {
       model_.status = why + "; camera placed on the model's risers or nosings in view";
       placed_ = Accepted{obs.source_utime, *placed, to_base_m(obs)};
+      x_measured_utime_ = obs.source_utime;
       return publish(obs, *placed, true);
     }
   model_.status = !predicted      ? why
                   : with_odometry ? why + "; camera from odometry"
                                   : why + "; camera from the motion prior";
-  publish(obs, with_observed_height(obs, prior), predicted);
+  publish(obs, with_observed_height(obs, prior), predicted,
+          prior_x_uncertainty_m(obs.source_utime, with_odometry));
 }
 
 void Tracker::track(const Observation& obs, bool with_odometry) {
@@ -295,10 +327,10 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
     if (!reseed(obs, why)) place_by_prior(obs, prior, with_odometry, since_accept_s, why);
     return;
   }
-  accept(obs, reg.pose);
+  accept(obs, reg.pose, !dead_reckoned);
   model_.state = relocalising && !dead_reckoned ? TrackingState::Relocalised : TrackingState::Ok;
   model_.status = dead_reckoned ? "beyond the model: placed by the motion prior" : relocalising ? "relocalised" : "ok";
-  publish(obs, reg.pose, true);
+  publish(obs, reg.pose, true, dead_reckoned ? prior_x_uncertainty_m(obs.source_utime, with_odometry) : 0.0);
 }
 
 // A model only its seed supports is no better evidence than this rejected
@@ -315,7 +347,7 @@ bool Tracker::reseed(const Observation& obs, const std::string& why) {
 
 // Merges a registered observation into the map and keeps the pose history of
 // the velocity window.
-void Tracker::accept(const Observation& obs, const Pose4& pose) {
+void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured) {
   const std::vector<ObservedStep> observed = observed_with_overhang(obs, pose);
   merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
   note_floor(obs, observed);
@@ -326,11 +358,16 @@ void Tracker::accept(const Observation& obs, const Pose4& pose) {
   odometry_.forget_before(obs.source_utime);
   while (accepted_.size() > 2 && seconds(obs.source_utime - accepted_[1].utime) >= config_.motion.velocity_window_s)
     accepted_.pop_front();
+  // A dead-reckoned pose continues the prior: neither a measured position nor a speed change.
+  if (x_measured) {
+    x_measured_utime_ = obs.source_utime;
+    note_speed_change();
+  }
   ++model_.observations_fused;
 }
 
-void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid) {
-  fill_model(map_, pose, camera_valid, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
+void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid, double x_uncertainty_m) {
+  fill_model(map_, pose, camera_valid, x_uncertainty_m, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
              flight_overhang_m(map_, config_.overhang),
              model_);
 }

@@ -46,7 +46,8 @@ class Tracker {
   void place_by_prior(const Observation& obs, const Pose4& prior, bool with_odometry, double since_accept_s,
                       const std::string& why);
   bool reseed(const Observation& obs, const std::string& why);
-  void accept(const Observation& obs, const Pose4& pose);
+  // x_measured: the pose was registered on the model (not carried on by the prior).
+  void accept(const Observation& obs, const Pose4& pose, bool x_measured);
   // Marks the model's first step as standing on a seen floor (tracker.cpp).
   void note_floor(const Observation& obs, const std::vector<ObservedStep>& observed);
   Pose4 with_observed_height(const Observation& obs, Pose4 pose) const;
@@ -55,7 +56,10 @@ class Tracker {
   Eigen::Vector3d to_base_m(const Observation& obs) const;
   bool odometry_covers(int64_t utime) const;
   std::vector<ObservedStep> observed_with_overhang(const Observation& obs, const Pose4& pose) const;
-  void publish(const Observation& obs, const Pose4& pose, bool camera_valid);
+  // x_uncertainty_m: how far off the camera's position along the stair may be (0: measured).
+  void publish(const Observation& obs, const Pose4& pose, bool camera_valid, double x_uncertainty_m = 0.0);
+  double prior_x_uncertainty_m(int64_t utime, bool with_odometry) const;
+  void note_speed_change();
 
   TrackerConfig config_;
   StairMap map_;
@@ -73,6 +77,11 @@ class Tracker {
   // A frame placed on the planes in view since the last accepted one: where the camera was last
   // seen, so the prior starts there (its velocity stays the accepted poses').
   std::optional<Accepted> placed_;
+  // When the camera's position along the stair was last measured (registered on the model's risers
+  // or nosings, not carried by the prior), and how much its speed along the stair changed across
+  // the velocity window then (m/s): the prior's position may be off by that speed times the time since.
+  int64_t x_measured_utime_ = 0;
+  double speed_change_mps_ = 0.0;
   int64_t last_utime_ = 0;
   bool have_utime_ = false;
   int64_t dropped_out_of_order_ = 0, rejected_registrations_ = 0, resets_ = 0, time_jumps_ = 0;

@@ -467,6 +467,49 @@ TEST(Tracker, AFrameWithoutStepsIsPlacedByTheRisersInView) {
   EXPECT_EQ(m.observations_fused, fused) << "not merged";
 }
 
+// With nothing in view the motion prior carries the camera on at the last speed; a climber that
+// slows (a robot leaving a flight's last step sped up instead: 7.5 cm past the prior, one step low)
+// is then over another step than the prior. Where a nosing lies within how far the prior may be off
+// (the speed change seen, and half the largest plausible acceleration times t^2), the step beneath
+// is unknown: every step beneath that is published is right.
+TEST(Tracker, WhereThePriorMayBeOffByANosingTheStepBeneathIsUnknown) {
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  const double decel_mps2 = 0.9, speed_mps = 0.6;  // under motion.max_accel_mps2 (1.0)
+  auto run = [&](double max_accel_mps2, int& known, int& wrong) {
+    TrackerConfig c;
+    c.motion.max_accel_mps2 = max_accel_mps2;
+    Tracker tracker(c);
+    ObservationMaker maker(kStair, 15);
+    const size_t k = walk_to(tracker, maker, cams, kStair.nosing_x(4) - 0.10);
+    const StairModel& seen = tracker.model();
+    ASSERT_FALSE(seen.flights.empty());
+    ASSERT_NEAR(seen.flights[0].steps[0].nosing_m.z(), kStair.nosing_z(0), 0.02) << "the model's frame is the real one";
+    known = wrong = 0;
+    for (int n = 1; n <= 27; ++n) {  // 0.9 s, within predict_camera_s
+      const double t = n / 30.0, t_move = std::min(t, speed_mps / decel_mps2);
+      CameraState cam = cams[k];
+      cam.position_m.x() += speed_mps * t_move - 0.5 * decel_mps2 * t_move * t_move;
+      Observation obs = maker.make(cam, static_cast<int64_t>(k + n) * 33333);
+      obs.steps.clear();  // a wall ahead: nothing of the stair in view
+      obs.planes.clear();
+      obs.camera.height_m.reset();
+      const StairModel& m = tracker.update(obs);
+      ASSERT_TRUE(m.camera_valid) << n << ": " << m.status;
+      if (!m.camera_beneath_known) continue;
+      int real = -1;
+      while (real + 1 < static_cast<int>(kStair.riser_m.size()) && kStair.nosing_x(real + 1) <= cam.position_m.x()) ++real;
+      ++known;
+      wrong += m.camera_step_index != real;
+    }
+  };
+  int known = 0, wrong = 0;
+  run(TrackerConfig{}.motion.max_accel_mps2, known, wrong);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GE(known, 5) << "where no nosing is near the prior, the step beneath stays known";
+  run(0.0, known, wrong);
+  EXPECT_GT(wrong, 0) << "constant velocity trusted as exact: the wrong step beneath";
+}
+
 // What perception publishes of a frame in which it found no staircase: its steps' nosings only as
 // the depth jumps (convex edges across the flight, in every observation), the planes kept.
 void as_depth_jumps_only(Observation& obs) {
