@@ -152,6 +152,19 @@ double Tracker::prior_x_uncertainty_m(int64_t utime, bool with_odometry) const {
   return speed_change_mps_ * t + 0.5 * config_.motion.max_accel_mps2 * t * t;
 }
 
+// The yaw the observed stair axis gives: near the prior's, or near the last placed pose's. The
+// prior turns on at the window's yaw rate, and one frame's axis 10 degrees off (clutter beside a
+// flight) gave it one: it turned on 3 degrees a frame, the right axes fell outside the jump around
+// it, and the camera was placed 24 cm off with nothing to stop it. Else the prior's yaw.
+double Tracker::observed_yaw(double axis_rad, double prior_yaw_rad) const {
+  const double max_jump = config_.motion.max_yaw_jump_deg * M_PI / 180.0;
+  for (const double around : {prior_yaw_rad, (placed_ ? *placed_ : accepted_.back()).pose.yaw_rad}) {
+    const double yaw = yaw_from_axis(axis_rad, around);
+    if (std::abs(wrap_angle(yaw - around)) <= max_jump) return yaw;
+  }
+  return prior_yaw_rad;
+}
+
 // One observation, in explicit states: a time jump back restarts the stream;
 // an out-of-order observation is dropped; with no model one is seeded; else
 // it is tracked (registered and merged, or placed by the motion prior).
@@ -265,10 +278,7 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   if (!obs.camera.valid || obs.steps.empty()) return place_by_prior(obs, prior, with_odometry, since_accept_s, "observation without steps");
 
   Pose4 start_pose = prior;
-  if (const auto axis = observed_axis_angle_rad(obs)) {
-    const double yaw = yaw_from_axis(*axis, prior.yaw_rad);
-    if (std::abs(wrap_angle(yaw - prior.yaw_rad)) <= config_.motion.max_yaw_jump_deg * M_PI / 180.0) start_pose.yaw_rad = yaw;
-  }
+  if (const auto axis = observed_axis_angle_rad(obs)) start_pose.yaw_rad = observed_yaw(*axis, prior.yaw_rad);
   const RegistrationInput input = registration_input(obs, config_.registration);
   // An observation with no plane (nosings only: dark treads seen from above)
   // has nothing to register. Where the constant-velocity prior puts its

@@ -53,6 +53,7 @@ class Tracker {
   Pose4 with_observed_height(const Observation& obs, Pose4 pose) const;
   std::optional<Pose4> on_planes_in_view(const Observation& obs, const Pose4& prior) const;
   Pose4 predict(int64_t utime, const Eigen::Vector3d& to_base_m) const;
+  double observed_yaw(double axis_rad, double prior_yaw_rad) const;
   Eigen::Vector3d to_base_m(const Observation& obs) const;
   bool odometry_covers(int64_t utime) const;
   std::vector<ObservedStep> observed_with_overhang(const Observation& obs, const Pose4& pose) const;
