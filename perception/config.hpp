@@ -210,7 +210,8 @@ struct GravityConfig {
   float fit_rms_floor_per_m2 = 0.0015f;  // 1/m; nor smaller than this times its depth squared: depth noise
                                          // grows with z^2 (Kinect v1 1.5 mm at 1 m, 1.4 cm at 3 m; stereo
                                          // worse) and is correlated there (quantised disparity), which a far
-                                         // sliver's small residual hides
+                                         // sliver's small residual hides; whether a frame measures its pitch
+                                         // also counts it as a resolution that no average over cells beats
   float refine_prior_fraction = 1e-5f;  // directions the treads constrain less than this fraction of their
                                         // total information keep the consensus up (a lone thin strip)
 

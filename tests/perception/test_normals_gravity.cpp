@@ -274,6 +274,35 @@ TEST(PerceptionGravity, FarSliversBesideParallelWallsDoNotSetPitch) {
   EXPECT_FALSE(carried);
 }
 
+// The same landing a step further on (a hand-held Kinect v1 level descent): the far tread grew to
+// 227 cells 30 cm deep at 4.3 m, whose noise alone (6 mm over 227 cells) knows its tilt to 1.2
+// degrees; it was 2.2 off, the frame counted its pitch as measured, and the flight's real steps
+// below came out unmatched (9 false frames, 3 false model steps). The depth's resolution at 4.3 m
+// (quantised disparity: a few terraces across the tread) does not average over cells: the tilt is
+// known to resolution / depth at best, so the pitch counts as carried (the pipeline keeps it
+// gravity.carry_max_s at most, then the pose is unknown).
+TEST(PerceptionGravity, AFarTreadMeasuresPitchOnlyToTheDepthResolutionAcrossIt) {
+  const double pitch = -7.7;
+  auto segment = [&](const Eigen::Vector3d& world_normal, size_t cells, double spread0_m, double spread1_m,
+                     float rms_m, float depth_m) {
+    Segment s = fitted_segment(pitch, world_normal, cells, spread0_m, spread1_m, rms_m);
+    s.centroid = Eigen::Vector3f(0, 0, depth_m);
+    return s;
+  };
+  const Eigen::Vector3d Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d tilted = Eigen::AngleAxisd(2.2 * M_PI / 180, Y) * Z;
+  // The tread: 9 cm (standard deviation) along the view, 38 cm across it.
+  Segment tread = segment(tilted, 227, 0.089, 0.377, 0.0063f, 4.34f);
+  const Eigen::Vector3f forward = (test::optical_to_world(pitch, 0).transpose() * Eigen::Vector3d::UnitX()).cast<float>();
+  tread.axis[0] = (forward - forward.dot(tread.normal) * tread.normal).normalized();
+  tread.axis[1] = tread.normal.cross(tread.axis[0]).normalized();
+  const std::vector<Segment> segs = {segment(Y, 5811, 0.59, 0.85, 0.0031f, 3.3f),
+                                     segment(-Y, 2370, 0.53, 0.57, 0.0011f, 2.1f), tread};
+  bool carried = false;
+  ASSERT_TRUE(estimate_up(segs, GravityConfig{}, true_up(pitch), &carried).has_value());
+  EXPECT_TRUE(carried);
+}
+
 TEST(PerceptionGravity, ABentTreadIsOutvotedByThePlanesThatAgree) {
   // A camera at -2.4 deg (level, 0.9 m high) in front of a flight: two treads
   // of the same size, one of them tilted 3.3 deg as a whole (all of it in a
