@@ -251,13 +251,12 @@ std::vector<JumpEdge> depth_jump_edges(const NormalGrid& g, const DepthImage& fr
       if (std::abs(dir.z()) > std::sin(cfg.max_tilt_deg * deg) ||
           std::abs(dir.dot(axis)) > std::sin(cfg.max_axis_deg * deg))
         continue;
-      std::vector<float> ts, ss, zs, ns, nz;
+      std::vector<float> ts, ss, zs, ns;
       for (int i : line) {
         ts.push_back(lateral.dot(pts[i].q));
         ss.push_back(axis.dot(pts[i].q));
         zs.push_back(pts[i].q.z());
         ns.push_back(axis.dot(pts[i].nosing));
-        nz.push_back(pts[i].nosing.z());
       }
       const auto [lo, hi] = std::minmax_element(ts.begin(), ts.end());
       if (*hi - *lo < min_length_m) continue;
@@ -266,10 +265,8 @@ std::vector<JumpEdge> depth_jump_edges(const NormalGrid& g, const DepthImage& fr
       std::nth_element(zs.begin(), zs.begin() + mid, zs.end());
       JumpEdge e;
       std::nth_element(ns.begin(), ns.begin() + mid, ns.end());
-      std::nth_element(nz.begin(), nz.begin() + mid, nz.end());
       e.s = ss[mid];
       e.nosing_s = ns[mid];
-      e.nosing_z = nz[mid];
       e.z = zs[mid];
       e.t_min = *lo;
       e.t_max = *hi;

@@ -18,7 +18,6 @@ namespace stairs {
 struct JumpEdge {
   float s = 0, z = 0, t_min = 0, t_max = 0;  // of the near cells' mean points
   float nosing_s = 0;  // the edge itself along the axis: the near cells placed at the jump's pixel row
-  float nosing_z = 0;  // and its height (a riser's top seen from below: the cells' means lie half a cell lower)
   Eigen::Vector2f across = Eigen::Vector2f::UnitY();  // the fitted line's horizontal direction (unit, either sign)
   Edge edge;  // the observation's edge (source DepthJump, type Convex)
 };

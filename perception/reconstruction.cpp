@@ -66,7 +66,7 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
     const int floor = level_at_foot(ps, e, contact);
     s.riser_height_m = floor >= 0 ? base.z - ps.extents[floor].z_mean : e.bottom_in_view ? base.z - e.z_min : median;
     // A level that is a riser's top (its tread seen from below, or edge-on) is no measured height.
-    if ((floor < 0 && !e.bottom_in_view) || (base.riser_top && !base.top_at_jump)) s.inferred |= kStepRiserInferred;
+    if ((floor < 0 && !e.bottom_in_view) || base.riser_top) s.inferred |= kStepRiserInferred;
     // At the riser's face, as every other step whose riser is seen (steps_from_chain): the level's
     // trimmed front lies behind it (its edge cells are lost at the corner; 1.8 cm on a synthetic
     // stair, its tread 1.8 cm short), and on a nosing overhang, where the face stands 3 cm behind

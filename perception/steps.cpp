@@ -54,14 +54,6 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   for (const JumpEdge& j : edges) {
     bool seen = false;
     for (size_t k = 0; k < n_surfaces && !seen; ++k) {
-      // A riser's segmented top stops a cell or two short of its edge (those cells' normals mix in
-      // what lies beyond): 4-10 cm at 2.5-3 m, more than half a rise wrong. The jump above it at
-      // its face, nearer than any rise, is its nosing seen from below, measured at the pixel rows.
-      Level& l = levels[k];
-      if (l.riser_top && j.z > l.z && j.z < l.z + min_rise_m && std::abs(j.nosing_s - l.s_min) < near) {
-        l.z = std::max(j.z, j.nosing_z);
-        l.top_at_jump = true;
-      }
       seen = std::abs(levels[k].z - j.z) < same_level && levels[k].s_max > j.s - ahead &&
              levels[k].s_min < j.s + behind;
       // The farthest edge that ends it (a tread holds one nosing).
@@ -105,9 +97,7 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
     // simulator's steep flight with 3 cm nosings lost 1.7 cm of rise this way).
     // The rise is then a prior, flagged: the tracker takes it from the fused
     // nosing heights, and verification's regularity does not judge it.
-    // Where the depth jump at its nosing gave the height, it is measured.
-    if ((tread.riser_top && !tread.top_at_jump) || (below.riser_top && !below.top_at_jump))
-      s.inferred |= kStepRiserInferred;
+    if (tread.riser_top || below.riser_top) s.inferred |= kStepRiserInferred;
     // Going down the nosing is the depth jump at the tread's far end where one
     // shows it: the plane's trimmed extent stops short of the edge's cells.
     float nosing_s = up ? tread.s_min : tread.far_edge ? tread.edge_s : tread.s_max;

@@ -15,7 +15,6 @@ struct Level {
   bool far_edge = false;    // a depth-jump edge ends it (its nosing, seen from above)
   float edge_s = 0;         // where that edge lies along the axis (valid with far_edge)
   bool riser_top = false;   // the top of a riser facing the camera (a tread seen edge-on)
-  bool top_at_jump = false;  // a riser's top whose height is the depth jump at its nosing (measured)
   // How far its plane's heights (trimmed percentiles) reach below and above z;
   // 0 for an edge's level.
   float reach_below_m = 0, reach_above_m = 0;

@@ -383,40 +383,6 @@ TEST(PerceptionSteps, RisersSeenFromBelowChainAcrossAnyPlausibleTread) {
   EXPECT_EQ(best_chain(tread_levels(ps, {}, cfg), cfg).steps(), 1);
 }
 
-// A robot's Kinect v2 2.5-3 m from a flight, its camera at the treads' height: each riser's
-// segmented top stops a cell or two short of its nosing (those cells' normals mix in the next riser
-// beyond), 4-10 cm there, and its nosing's depth jump seen from below made a level of its own a few
-// cm above: false steps half a rise off in 3 frames. The jump at a riser's face, nearer above its
-// top than any rise, is that riser's nosing, measured at the jump's pixel rows.
-TEST(PerceptionSteps, ARisersTopCutShortIsItsNosingsJumpAbove) {
-  PlaneSet ps;
-  auto add = [&](PlaneKind kind, const PlaneExtent& e) { add_plane(ps, kind, e); };
-  add(PlaneKind::Tread, {0.3f, 1.0f, -0.5f, 0.5f, -0.45f, -0.45f, 0.65f, -0.45f});
-  std::vector<JumpEdge> jumps;
-  for (int k = 0; k < 3; ++k) {
-    const float s = 1.0f + 0.28f * k, z0 = -0.45f + 0.18f * k, top = z0 + 0.18f;
-    add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, top - 0.06f, s, z0 + 0.06f});
-    JumpEdge j;
-    j.s = s - 0.01f;
-    j.nosing_s = s - 0.005f;
-    j.z = top - 0.01f;  // the near cells' means, half a cell down the riser
-    j.nosing_z = top;
-    j.t_min = -0.5f, j.t_max = 0.5f;
-    jumps.push_back(j);
-  }
-  const StairConfig cfg;
-  const StairChain chain = best_chain(tread_levels(ps, jumps, cfg), cfg);
-  EXPECT_EQ(chain.direction, Direction::Up);
-  ASSERT_EQ(chain.steps(), 3);
-  const std::vector<Step> steps = steps_from_chain(ps, chain, cfg);
-  ASSERT_EQ(steps.size(), 3u);
-  for (int k = 0; k < 3; ++k) {
-    EXPECT_NEAR(steps[k].nosing_m.z(), -0.45 + 0.18 * (k + 1), 1e-4) << k;
-    EXPECT_NEAR(*steps[k].riser_height_m, 0.18, 1e-4) << k;
-    EXPECT_FALSE(steps[k].inferred & kStepRiserInferred) << k << ": measured by the jump";
-  }
-}
-
 // A surface shows only its front. A patch 0.2 m above a robot's camera whose
 // fit leans 8 deg towards it (noise on a riser's top seen at a grazing angle
 // did this on a D435) faces up within the tread tolerance, but an upward-facing
