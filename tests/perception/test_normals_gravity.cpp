@@ -144,6 +144,14 @@ Segment fitted_segment(double pitch_deg, const Eigen::Vector3d& world_normal, si
   return s;
 }
 
+// The same, its centroid depth_m ahead of the camera (the depth its fit's noise floor grows with).
+Segment fitted_segment_at(double pitch_deg, const Eigen::Vector3d& world_normal, size_t cells, double spread0_m,
+                          double spread1_m, float rms_m, float depth_m) {
+  Segment s = fitted_segment(pitch_deg, world_normal, cells, spread0_m, spread1_m, rms_m);
+  s.centroid = Eigen::Vector3f(0, 0, depth_m);
+  return s;
+}
+
 Eigen::Vector3f true_up(double pitch_deg) {
   return (test::optical_to_world(pitch_deg, 0).transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
 }
@@ -250,9 +258,7 @@ TEST(PerceptionGravity, FarSliversBesideParallelWallsDoNotSetPitch) {
   const double pitch = -7.0;
   auto segment = [&](const Eigen::Vector3d& world_normal, size_t cells, double spread0_m, double spread1_m,
                      float rms_m, float depth_m) {
-    Segment s = fitted_segment(pitch, world_normal, cells, spread0_m, spread1_m, rms_m);
-    s.centroid = Eigen::Vector3f(0, 0, depth_m);
-    return s;
+    return fitted_segment_at(pitch, world_normal, cells, spread0_m, spread1_m, rms_m, depth_m);
   };
   const Eigen::Vector3d Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d tilted = Eigen::AngleAxisd(2.5 * M_PI / 180, Y) * Z;  // pitch, about the walls' normal
@@ -283,21 +289,15 @@ TEST(PerceptionGravity, FarSliversBesideParallelWallsDoNotSetPitch) {
 // gravity.carry_max_s at most, then the pose is unknown).
 TEST(PerceptionGravity, AFarTreadMeasuresPitchOnlyToTheDepthResolutionAcrossIt) {
   const double pitch = -7.7;
-  auto segment = [&](const Eigen::Vector3d& world_normal, size_t cells, double spread0_m, double spread1_m,
-                     float rms_m, float depth_m) {
-    Segment s = fitted_segment(pitch, world_normal, cells, spread0_m, spread1_m, rms_m);
-    s.centroid = Eigen::Vector3f(0, 0, depth_m);
-    return s;
-  };
-  const Eigen::Vector3d Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
-  const Eigen::Vector3d tilted = Eigen::AngleAxisd(2.2 * M_PI / 180, Y) * Z;
-  // The tread: 9 cm (standard deviation) along the view, 38 cm across it.
-  Segment tread = segment(tilted, 227, 0.089, 0.377, 0.0063f, 4.34f);
+  const Eigen::Vector3d tilted = Eigen::AngleAxisd(2.2 * M_PI / 180, Eigen::Vector3d::UnitY()) * Eigen::Vector3d::UnitZ();
+  // The tread: 9 cm (standard deviation) along the view, 38 cm across it; the side walls.
+  Segment tread = fitted_segment_at(pitch, tilted, 227, 0.089, 0.377, 0.0063f, 4.34f);
   const Eigen::Vector3f forward = (test::optical_to_world(pitch, 0).transpose() * Eigen::Vector3d::UnitX()).cast<float>();
   tread.axis[0] = (forward - forward.dot(tread.normal) * tread.normal).normalized();
   tread.axis[1] = tread.normal.cross(tread.axis[0]).normalized();
-  const std::vector<Segment> segs = {segment(Y, 5811, 0.59, 0.85, 0.0031f, 3.3f),
-                                     segment(-Y, 2370, 0.53, 0.57, 0.0011f, 2.1f), tread};
+  const std::vector<Segment> segs = {fitted_segment_at(pitch, Eigen::Vector3d::UnitY(), 5811, 0.59, 0.85, 0.0031f, 3.3f),
+                                     fitted_segment_at(pitch, -Eigen::Vector3d::UnitY(), 2370, 0.53, 0.57, 0.0011f, 2.1f),
+                                     tread};
   bool carried = false;
   ASSERT_TRUE(estimate_up(segs, GravityConfig{}, true_up(pitch), &carried).has_value());
   EXPECT_TRUE(carried);
