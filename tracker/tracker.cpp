@@ -111,9 +111,7 @@ Pose4 Tracker::predict(int64_t utime, const Eigen::Vector3d& to_base_m) const {
   if (a1.utime == a0.utime || seconds(utime - a1.utime) > config_.motion.max_prediction_s) return last.pose;
   const double dt = seconds(utime - last.utime);
   const double span = seconds(a1.utime - a0.utime);
-  const Eigen::Vector3d b1 = p1.t_m + p1.rotation() * a1.to_base_m;
-  const Eigen::Vector3d b0 = a0.pose.t_m + a0.pose.rotation() * a0.to_base_m;
-  const Eigen::Vector3d bl = last.pose.t_m + last.pose.rotation() * last.to_base_m;
+  const Eigen::Vector3d b1 = a1.base_m(), b0 = a0.base_m(), bl = last.base_m();
   Pose4 p = last.pose;
   p.yaw_rad = wrap_angle(last.pose.yaw_rad + wrap_angle(p1.yaw_rad - a0.pose.yaw_rad) * (dt / span));
   Eigen::Vector3d b = bl + (b1 - b0) * (dt / span);
@@ -130,15 +128,14 @@ Pose4 Tracker::predict(int64_t utime, const Eigen::Vector3d& to_base_m) const {
 // dominate (3 mm over 33 ms is 0.1 m/s).
 void Tracker::note_speed_change() {
   if (accepted_.size() < 3) return;
-  const auto base_x = [](const Accepted& a) { return (a.pose.t_m + a.pose.rotation() * a.to_base_m).x(); };
   const Accepted &a0 = accepted_.front(), &a1 = accepted_.back();
   const double t_mid = 0.5 * seconds(a1.utime - a0.utime);
   const Accepted* mid = &accepted_[1];
   for (size_t k = 1; k + 1 < accepted_.size(); ++k)
     if (std::abs(seconds(accepted_[k].utime - a0.utime) - t_mid) < std::abs(seconds(mid->utime - a0.utime) - t_mid))
       mid = &accepted_[k];
-  const double first = (base_x(*mid) - base_x(a0)) / seconds(mid->utime - a0.utime);
-  const double second = (base_x(a1) - base_x(*mid)) / seconds(a1.utime - mid->utime);
+  const double first = (mid->base_m().x() - a0.base_m().x()) / seconds(mid->utime - a0.utime);
+  const double second = (a1.base_m().x() - mid->base_m().x()) / seconds(a1.utime - mid->utime);
   speed_change_mps_ = std::abs(second - first);
 }
 
