@@ -60,6 +60,10 @@ struct RegistrationConfig {
                                                 // riser begins is the one it stands on (levels differ by a rise)
   double foot_max_gap_m = 0.15;  // m; ... and reaches to within this of its riser along the stair (a nosing
                                  // overhangs by up to 5 cm, a plane's trimmed extent stops a few cm short)
+  double position_uncertainty_m = 0.01;  // m; a registered camera's position along the stair may be this far
+                                         // off: the nosings it rests on are located to about a grid cell (4 px
+                                         // at 1.3 m with a 525 px focal length: 1 cm); nearer a nosing, the step
+                                         // beneath is unknown
 
   template <class V>
   void visit(V& v) {
@@ -73,6 +77,7 @@ struct RegistrationConfig {
     v("accept_distance_m", accept_distance_m, 0.0001, 1.0);
     v("foot_max_offset_rise_fraction", foot_max_offset_rise_fraction, 0.0, 1.0);
     v("foot_max_gap_m", foot_max_gap_m, 0.0, 10.0);
+    v("position_uncertainty_m", position_uncertainty_m, 0.0, 1.0);
   }
 };
 

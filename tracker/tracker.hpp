@@ -57,7 +57,8 @@ class Tracker {
   Eigen::Vector3d to_base_m(const Observation& obs) const;
   bool odometry_covers(int64_t utime) const;
   std::vector<ObservedStep> observed_with_overhang(const Observation& obs, const Pose4& pose) const;
-  // x_uncertainty_m: how far off the camera's position along the stair may be (0: measured).
+  // x_uncertainty_m: how far the motion prior may have carried the position along the stair off since it
+  // was last registered (0: registered); registration.position_uncertainty_m is added to it.
   void publish(const Observation& obs, const Pose4& pose, bool camera_valid, double x_uncertainty_m = 0.0);
   double prior_x_uncertainty_m(int64_t utime, bool with_odometry) const;
   void note_speed_change();

@@ -12,12 +12,17 @@
 namespace stairs {
 namespace {
 
-// One file per process: ctest runs this binary's tests side by side.
+// One file per process: ctest runs this binary's tests side by side. Removed when the process
+// ends (each ctest run left one in the build directory).
 std::string write_temp(const std::string& text) {
-  const std::string path =
-      std::string(STAIRS_BINARY_DIR) + "/perception_config_test." + std::to_string(::getpid()) + ".json";
-  std::ofstream(path) << text;
-  return path;
+  struct RemovedAtExit {
+    std::string path =
+        std::string(STAIRS_BINARY_DIR) + "/perception_config_test." + std::to_string(::getpid()) + ".json";
+    ~RemovedAtExit() { std::remove(path.c_str()); }
+  };
+  static const RemovedAtExit file;
+  std::ofstream(file.path) << text;
+  return file.path;
 }
 
 std::string load_error(const std::string& text) {

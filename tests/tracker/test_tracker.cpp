@@ -523,6 +523,52 @@ void turn(Observation& obs, double deg) {
   }
 }
 
+// Moves everything an observation saw `dx_m` along the camera's forward axis (gravity frame).
+void shift(Observation& obs, double dx_m) {
+  const Eigen::Vector3f d(static_cast<float>(dx_m), 0.0f, 0.0f);
+  for (auto& st : obs.steps) st.nosing_m += d.cast<double>();
+  for (auto& e : obs.edges) {
+    e.start += d;
+    e.end += d;
+  }
+  for (auto& p : obs.planes) {
+    p.centroid += d;
+    for (auto& c : p.corners) c += d;
+    for (auto& q : p.points) q += d;
+  }
+}
+
+// Perception locates a nosing to about a grid cell (1 cm at 1.3 m), so a registered camera may be
+// that far off along the stair: hand-held walks placed it a millimetre from a nosing and over the
+// wrong step. A frame whose steps all came out 6 mm near, the camera 3 mm before a nosing: the
+// step beneath is unknown, not the next one; 5 cm from any nosing it stays known and right.
+TEST(Tracker, WithinTheRegistrationsUncertaintyOfANosingTheStepBeneathIsUnknown) {
+  const auto cams = walk(kStair, true, 0.3, 30.0);
+  const Noise exact{0.0, 0.0, 0.0, 0.0};
+  auto run = [&](double uncertainty_m, double from_nosing_m) {
+    TrackerConfig c;
+    c.registration.position_uncertainty_m = uncertainty_m;
+    Tracker tracker(c);
+    ObservationMaker maker(kStair, 17, 400, exact);
+    const size_t k = walk_to(tracker, maker, cams, kStair.nosing_x(3) + from_nosing_m);
+    CameraState cam = cams[k];
+    cam.position_m.x() = kStair.nosing_x(3) + from_nosing_m;
+    Observation obs = maker.make(cam, static_cast<int64_t>(k) * 33333);
+    shift(obs, -0.006);
+    return tracker.update(obs);
+  };
+  const StairModel near = run(TrackerConfig{}.registration.position_uncertainty_m, -0.003);
+  ASSERT_TRUE(near.camera_valid) << near.status;
+  EXPECT_EQ(near.status, "ok");
+  EXPECT_FALSE(near.camera_beneath_known) << "step " << near.camera_step_index << ", the real one is 2";
+  const StairModel exact_trusted = run(0.0, -0.003);
+  EXPECT_TRUE(exact_trusted.camera_beneath_known);
+  EXPECT_EQ(exact_trusted.camera_step_index, 3) << "a registration trusted as exact: the next step";
+  const StairModel clear = run(TrackerConfig{}.registration.position_uncertainty_m, -0.05);
+  EXPECT_TRUE(clear.camera_beneath_known);
+  EXPECT_EQ(clear.camera_step_index, 2);
+}
+
 // One frame whose stair axis is 13 degrees off is within the yaw jump the prior allows (15), so it
 // gave the prior a yaw rate: at 10 fps it turned on 2-3 degrees a frame, the right axes that
 // followed fell outside the jump around it, and the camera went 38 cm astray (a cluttered D435
