@@ -87,12 +87,15 @@ struct MotionConfig {
   double max_yaw_jump_deg = 15.0;        // deg; per observation, vs. the motion prior
   double max_translation_jump_m = 0.12;  // m; ICP correction vs. the motion prior (< half a tread)
   double velocity_window_s = 0.5;        // s; constant velocity from the poses this far back (noise / window)
-  double max_prediction_s = 1.5;         // s; longer gaps predict no motion (relocalise instead)
+  double max_prediction_s = 1.5;         // s; longer gaps since the last registration or placement predict
+                                         // no motion (relocalise instead)
   double observed_height_max_riser_fraction = 0.5;  // of a riser: perception's height over the surface
                                                     // beneath corrects the prior's only this close (else
                                                     // that surface may be the next level ahead)
   double predict_camera_s = 1.0;  // s; an update that registers nothing (no steps in view, a rejected
-                                  // registration) still places the camera by the motion prior this long
+                                  // registration) still places the camera by the motion prior this long,
+                                  // and on the model's risers, nosings or end wall in view this long
+                                  // after the last such placement
   double max_accel_mps2 = 1.0;  // m/s^2; a walker's or a climbing robot's speed along the stair changes
                                 // this fast at most (~0.1 g): the prior's position may be a*t^2/2 off
 
@@ -134,6 +137,25 @@ struct RelocalisationConfig {
     v("after_s", after_s, 0.0, 60.0);
     v("step_range", step_range, 0, 10);
     v("min_gain", min_gain, 0.0, 10.0);
+  }
+};
+
+// --- end wall: where a top landing ends (tracker/end_wall.hpp)
+struct EndWallConfig {
+  double min_width_m = 0.4;  // m; a face this wide across the stair: a wall, a door, the next flight's first
+                             // riser (all fixed where the landing ends); a post or a chair leg is narrower
+  double max_foot_offset_rise_fraction = 0.25;  // of the typical riser: no point of it lower than this below the
+                                                // top level (its foot may be hidden behind the top nosing)
+  double max_normal_deg = 15.0;  // deg; its normal this close to the stair's axis faces down the flight
+  double min_run_fraction = 0.5;  // of the typical tread: at least this far beyond the top nosing (else it
+                                  // is that step's riser seen again)
+
+  template <class V>
+  void visit(V& v) {
+    v("min_width_m", min_width_m, 0.0, 100.0);
+    v("max_foot_offset_rise_fraction", max_foot_offset_rise_fraction, 0.0, 1.0);
+    v("max_normal_deg", max_normal_deg, 0.0, 90.0);
+    v("min_run_fraction", min_run_fraction, 0.0, 10.0);
   }
 };
 
@@ -240,6 +262,7 @@ struct TrackerConfig {
   OdometryConfig odometry;
   RelocalisationConfig relocalisation;
   MergeConfig merge;
+  EndWallConfig end_wall;
   OverhangConfig overhang;
   ModelReconstructionConfig reconstruction;
   DirectionConfig direction;
@@ -255,6 +278,7 @@ struct TrackerConfig {
     v.section("odometry", odometry);
     v.section("relocalisation", relocalisation);
     v.section("merge", merge);
+    v.section("end_wall", end_wall);
     v.section("overhang", overhang);
     v.section("reconstruction", reconstruction);
     v.section("direction", direction);

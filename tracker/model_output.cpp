@@ -3,6 +3,7 @@
 #include "common/gravity_frame.hpp"
 #include "common/limits.hpp"
 #include "tracker/config.hpp"
+#include "tracker/end_wall.hpp"
 
 #include <cmath>
 
@@ -122,14 +123,15 @@ bool clear_of_nosings(const StairModel& m, double x, double uncertainty_m) {
 // first riser only where the level it stands on was seen as a floor (a tread
 // seen one rise below is no floor: a flight whose first steps were hidden put a
 // hand-held camera 35 cm low over a "floor" that was the second tread).
-bool over_seen_part(const MapStep& first, const MapStep& last, const Eigen::Vector3d& origin, double x) {
-  return x <= std::max(last.x(), last.tread_far_x_m) - origin.x() && (first.on_seen_floor || x >= first.x() - origin.x());
+// Beyond the last step it reaches as far as its tread was seen, or to the wall where it ends.
+bool over_seen_part(const MapStep& first, double seen_to_x, const Eigen::Vector3d& origin, double x) {
+  return x <= seen_to_x - origin.x() && (first.on_seen_floor || x >= first.x() - origin.x());
 }
 
 // The camera in the model: its pose, the step beneath and its height over that step's tread;
 // known only over the part of the stair the model has seen.
 void place_camera(const Pose4& camera, const Eigen::Quaterniond& gravity_rotation, const Eigen::Vector3d& origin,
-                  const MapStep& first, const MapStep& last, double x_uncertainty_m, StairModel& out) {
+                  const MapStep& first, double seen_to_x, double x_uncertainty_m, StairModel& out) {
   const Eigen::Vector3d cam = camera.t_m - origin;
   out.camera_position_m = cam;
   out.camera_orientation = Eigen::Quaterniond(camera.rotation()) * gravity_rotation;
@@ -138,11 +140,11 @@ void place_camera(const Pose4& camera, const Eigen::Quaterniond& gravity_rotatio
   out.camera_step_index = b.step;
   out.camera_height_m = cam.z() - b.surface_z_m;
   out.camera_beneath_known =
-      over_seen_part(first, last, origin, cam.x()) && clear_of_nosings(out, cam.x(), x_uncertainty_m);
+      over_seen_part(first, seen_to_x, origin, cam.x()) && clear_of_nosings(out, cam.x(), x_uncertainty_m);
 }
 
 // The carrier's base from the placed camera and the mount (common/mount.hpp base_of_camera).
-void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const MapStep& first, const MapStep& last,
+void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const MapStep& first, double seen_to_x,
                 double x_uncertainty_m, StairModel& out) {
   out.base_valid = out.camera_valid && mount.configured();
   if (!out.base_valid) return;
@@ -152,7 +154,7 @@ void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const M
   const Beneath b = beneath(out, out.base_position_m.x());
   out.base_step_index = b.step;
   out.base_height_m = out.base_position_m.z() - b.surface_z_m;
-  out.base_beneath_known = over_seen_part(first, last, origin, out.base_position_m.x()) &&
+  out.base_beneath_known = over_seen_part(first, seen_to_x, origin, out.base_position_m.x()) &&
                            clear_of_nosings(out, out.base_position_m.x(), x_uncertainty_m);
 }
 
@@ -190,8 +192,11 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid, dou
     }
   }
   out.flights.push_back(std::move(flight));
-  place_camera(camera, gravity_rotation, origin, first, *steps.back(), x_uncertainty_m, out);
-  place_base(mount, origin, first, *steps.back(), x_uncertainty_m, out);
+  const MapStep& last = *steps.back();
+  double seen_to_x = std::max(last.x(), last.tread_far_x_m);
+  if (const auto wall = end_wall_x_m(map); wall && &last == &map.steps.back()) seen_to_x = std::max(seen_to_x, *wall);
+  place_camera(camera, gravity_rotation, origin, first, seen_to_x, x_uncertainty_m, out);
+  place_base(mount, origin, first, seen_to_x, x_uncertainty_m, out);
 }
 
 std::vector<Step> steps_from_camera(const StairModel& model) {

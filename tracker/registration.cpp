@@ -1,6 +1,7 @@
 #include "tracker/registration.hpp"
 
 #include "tracker/config.hpp"
+#include "tracker/end_wall.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +19,7 @@ void sample(const Plane& p, int n, std::vector<Eigen::Vector3d>& out) {
 // The model's planes as bounded lines in the x-z profile.
 struct Profile {
   std::vector<double> riser_x, riser_z_lo, riser_z_hi;
+  int end_wall = -1;  // the riser face that is the model's end wall (end_wall.hpp), if any
   std::vector<double> tread_z, tread_x_lo, tread_x_hi;
   std::vector<Eigen::Vector2d> nosing_xz;
 };
@@ -43,6 +45,14 @@ Profile profile(const StairMap& map, const StairPriorConfig& c) {
                                                     : std::max(s.tread_far_x_m, s.x() + tread));
     p.nosing_xz.emplace_back(s.x(), s.z());
   }
+  // Where the top landing ends at a wall, the wall is a riser of any height standing on it.
+  if (const auto wall = end_wall_x_m(map)) {
+    p.end_wall = static_cast<int>(p.riser_x.size());
+    p.tread_x_hi.back() = *wall;
+    p.riser_x.push_back(*wall);
+    p.riser_z_lo.push_back(map.steps.back().z());
+    p.riser_z_hi.push_back(std::numeric_limits<double>::infinity());
+  }
   return p;
 }
 
@@ -67,9 +77,10 @@ struct Extent {
 // std::hypot guards against overflow at a cost this inner loop cannot pay.
 double norm2(double a, double b) { return std::sqrt(a * a + b * b); }
 
-// Signed residual to the nearest bounded plane and the bounded distance.
+// Signed residual to the nearest bounded plane, the bounded distance and the face's index.
 struct Match {
   double residual = 0.0, distance = std::numeric_limits<double>::infinity();
+  int face = -1;
 };
 
 // The nearest face of one family: faces at `at` (risers: x; treads: z), each
@@ -80,7 +91,7 @@ Match nearest_face(const std::vector<double>& at, const std::vector<double>& lo,
   for (size_t k = 0; k < at.size(); ++k) {
     const double r = at[k] - q_at;
     const double d = norm2(r, outside(q_along, lo[k], hi[k]));
-    if (d < m.distance) m = {r, d};
+    if (d < m.distance) m = {r, d, static_cast<int>(k)};
   }
   return m;
 }
@@ -272,7 +283,11 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
     if (d < c.accept_distance_m) ++in, sq += d * d;
     if (extent.holds_plane_point(q)) ++within;
   };
-  for (const auto& p : risers) count(p + t, nearest_riser(prof, p + t).distance, riser_in, riser_within);
+  for (const auto& p : risers) {
+    const Match m = nearest_riser(prof, p + t);
+    count(p + t, m.distance, riser_in, riser_within);
+    reg.end_wall_inliers += m.face == prof.end_wall && m.distance < c.accept_distance_m;
+  }
   for (const auto& p : treads) count(p + t, nearest_tread(prof, p + t).distance, tread_in, tread_within);
   int nosing_in = 0, nosing_within = 0;
   for (const auto& p : nosings) {

@@ -56,6 +56,7 @@ struct Registration {
                               // (treads fix only z)
   int x_within = 0;           // riser points and nosings within the model's extent
   int nosing_inliers = 0;     // nosings that agree at the final pose
+  int end_wall_inliers = 0;   // riser points among x_inliers that agree with the model's end wall
 };
 
 // The next flight seen across a landing: at `pose` every riser point and nosing lies beyond the

@@ -51,6 +51,12 @@ struct MapStep {
 
 struct StairMap {
   std::vector<MapStep> steps;  // sorted by x (bottom to top)
+  // A vertical face standing on the top level beyond the last step and facing down the flight (the
+  // wall or door where a top landing ends; tracker/end_wall.hpp): its position along x, and whether
+  // enough observations saw it to use it.
+  RunningMean end_wall_x_m;
+  RunningMean end_wall_uncertainty_m;  // how far off the poses it was seen from may have been (mean)
+  bool end_wall_confirmed = false;
   bool empty() const { return steps.empty(); }
 };
 

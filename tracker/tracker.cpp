@@ -1,5 +1,6 @@
 #include "tracker/tracker.hpp"
 
+#include "tracker/end_wall.hpp"
 #include "tracker/merge.hpp"
 #include "tracker/model_output.hpp"
 #include "tracker/nosing_overhang.hpp"
@@ -70,6 +71,7 @@ bool Tracker::seed(const Observation& obs) {
   note_floor(obs, observed);
   accepted_.push_back({obs.source_utime, pose, to_base_m(obs)});
   x_measured_utime_ = obs.source_utime;
+  x_measured_uncertainty_m_ = 0.0;
   speed_change_mps_ = 0.0;
   model_.observations_fused = 1;
   model_.state = TrackingState::Ok;
@@ -108,7 +110,9 @@ Pose4 Tracker::predict(int64_t utime, const Eigen::Vector3d& to_base_m) const {
   if (const auto p = odometry_.predict(p1, a1.utime, utime)) return *p;
   const Accepted& last = placed_ ? *placed_ : a1;  // accept() clears it
   const Accepted& a0 = accepted_.front();
-  if (a1.utime == a0.utime || seconds(utime - a1.utime) > config_.motion.max_prediction_s) return last.pose;
+  // A gap since the position was last measured (registered or placed) predicts no motion; placements
+  // on the planes in view carry the velocity on (a robot crossing a top landing towards its end wall).
+  if (a1.utime == a0.utime || seconds(utime - last.utime) > config_.motion.max_prediction_s) return last.pose;
   const double dt = seconds(utime - last.utime);
   const double span = seconds(a1.utime - a0.utime);
   const Eigen::Vector3d b1 = a1.base_m(), b0 = a0.base_m(), bl = last.base_m();
@@ -145,9 +149,9 @@ void Tracker::note_speed_change() {
 // prior whose window had seen its speed change by 2 cm/s). Odometry measures the motion: then none
 // (publish() adds what the last registration itself may be off).
 double Tracker::prior_x_uncertainty_m(int64_t utime, bool with_odometry) const {
-  if (with_odometry) return 0.0;
+  if (with_odometry) return x_measured_uncertainty_m_;
   const double t = std::max(0.0, seconds(utime - x_measured_utime_));
-  return speed_change_mps_ * t + 0.5 * config_.motion.max_accel_mps2 * t * t;
+  return x_measured_uncertainty_m_ + speed_change_mps_ * t + 0.5 * config_.motion.max_accel_mps2 * t * t;
 }
 
 // The yaw the observed stair axis gives: near the prior's, or near the last placed pose's. The
@@ -161,6 +165,24 @@ double Tracker::observed_yaw(double axis_rad, double prior_yaw_rad) const {
     if (std::abs(wrap_angle(yaw - around)) <= max_jump) return yaw;
   }
   return prior_yaw_rad;
+}
+
+// The yaw the riser planes in view give (a frame without steps: a flight's last risers, the wall
+// where its top landing ends), each one within the jump the prior allows of the prior's, averaged by
+// width; else the prior's. The prior's, carried on at the last window's yaw rate across a landing,
+// turned the far steps away from the camera; a side wall seen while turning on a landing is no
+// riser (it is 90 degrees off the prior, which odometry or the last placements give).
+double Tracker::yaw_of_risers_in_view(const Observation& obs, double prior_yaw_rad) const {
+  const double max_jump = config_.motion.max_yaw_jump_deg * M_PI / 180.0;
+  double sum = 0.0, weight = 0.0;
+  for (const Plane& p : obs.planes) {
+    if (p.kind != PlaneKind::Riser || std::hypot(p.normal.x(), p.normal.y()) < 0.5) continue;
+    const double off = wrap_angle(yaw_from_axis(std::atan2(p.normal.y(), p.normal.x()), prior_yaw_rad) - prior_yaw_rad);
+    if (std::abs(off) > max_jump) continue;
+    sum += p.length_m * off;
+    weight += p.length_m;
+  }
+  return weight > 0.0 ? wrap_angle(prior_yaw_rad + sum / weight) : prior_yaw_rad;
 }
 
 // One observation, in explicit states: a time jump back restarts the stream;
@@ -239,35 +261,61 @@ Pose4 Tracker::with_observed_height(const Observation& obs, Pose4 pose) const {
 // with the model near the prior, they place the camera (x from them, z from the levels); the
 // frame is not merged (perception did not verify it) and does not feed the velocity (a robot's
 // jerky climb extrapolated from such poses went a step astray).
-std::optional<Pose4> Tracker::on_planes_in_view(const Observation& obs, const Pose4& prior) const {
+std::optional<Registration> Tracker::on_planes_in_view(const Observation& obs, const Pose4& prior) const {
   const RegistrationInput in = planes_in_view(obs, config_.registration);
   if (in.riser_points.empty() && in.nosings.empty()) return std::nullopt;
-  const Registration reg = register_to_map(in, map_, prior, config_.registration, config_.stair);
+  Pose4 start = prior;
+  start.yaw_rad = yaw_of_risers_in_view(obs, prior.yaw_rad);
+  const Registration reg = register_to_map(in, map_, start, config_.registration, config_.stair);
   if (reg.x_inliers == 0 || reg.inlier_ratio < config_.motion.min_inlier_ratio ||
       (reg.pose.t_m - prior.t_m).norm() > config_.motion.max_translation_jump_m)
     return std::nullopt;
-  return reg.pose;
+  return reg;
 }
 
-// Nothing registered: the camera stays on the stair by the motion prior (a
-// climber needs its pose on every update, e.g. on a landing with no step in
-// view) while that is fresh; attitude is the observation's own.
+// Nothing registered: the model's risers, nosings or end wall in view place the
+// camera while the prior that finds them is fresh (predict_camera_s since the
+// position along the stair was last measured, by a registration or by them: a
+// walker crossing the top landing towards its wall, the flight behind it). Else
+// the camera stays on the stair by the motion prior (a climber needs its pose
+// on every update, e.g. on a landing with no step in view) for predict_camera_s
+// after the last registration. Attitude is the observation's own.
 void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool with_odometry, double since_accept_s,
                              const std::string& why) {
   if (since_accept_s > config_.lifecycle.lost_after_s) model_.state = TrackingState::Lost;
+  const double since_measured_s = seconds(obs.source_utime - x_measured_utime_);
+  const bool findable = obs.camera.valid && (with_odometry || since_measured_s <= config_.motion.predict_camera_s);
   const bool predicted = obs.camera.valid && (with_odometry || since_accept_s <= config_.motion.predict_camera_s);
-  if (predicted)
+  if (findable)
     if (const auto placed = on_planes_in_view(obs, prior)) {
-      model_.status = why + "; camera placed on the model's risers or nosings in view";
-      placed_ = Accepted{obs.source_utime, *placed, to_base_m(obs)};
+      // The end wall alone places it only as well as the wall itself is known.
+      const bool wall_only = placed->end_wall_inliers == placed->x_inliers;
+      model_.status = why + (wall_only ? "; camera placed on the model's end wall in view"
+                                       : "; camera placed on the model's risers or nosings in view");
+      placed_ = Accepted{obs.source_utime, placed->pose, to_base_m(obs)};
       x_measured_utime_ = obs.source_utime;
-      return publish(obs, *placed, true);
+      x_measured_uncertainty_m_ = wall_only ? map_.end_wall_uncertainty_m.value : 0.0;
+      if (!wall_only) note_end_wall(obs, placed->pose, 0.0);
+      return publish(obs, placed->pose, true, x_measured_uncertainty_m_);
     }
   model_.status = !predicted      ? why
                   : with_odometry ? why + "; camera from odometry"
                                   : why + "; camera from the motion prior";
-  publish(obs, with_observed_height(obs, prior), predicted,
-          prior_x_uncertainty_m(obs.source_utime, with_odometry));
+  const Pose4 pose = with_observed_height(obs, prior);
+  const double uncertainty_m = prior_x_uncertainty_m(obs.source_utime, with_odometry);
+  // A wall first seen from a pose the prior placed (the last riser out of view before the wall came
+  // into it) is as good as that pose, and no better: taken while that is within how far a
+  // registration may correct the prior (a wall further off could not place the camera anyway).
+  if (predicted && uncertainty_m <= config_.motion.max_translation_jump_m) note_end_wall(obs, pose, uncertainty_m);
+  publish(obs, pose, predicted, uncertainty_m);
+}
+
+// `prior_uncertainty_m`: how far the prior may have carried the pose off since it was last measured
+// (0: measured); the measurement's own uncertainty is added, as publish() does for the camera.
+void Tracker::note_end_wall(const Observation& obs, const Pose4& pose, double prior_uncertainty_m) {
+  stairs::note_end_wall(map_, obs, pose, prior_uncertainty_m + config_.registration.position_uncertainty_m,
+                        config_.end_wall, config_.stair, config_.merge.max_average_weight,
+                        config_.confirmation.min_confirmations);
 }
 
 void Tracker::track(const Observation& obs, bool with_odometry) {
@@ -359,6 +407,7 @@ void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured)
   const std::vector<ObservedStep> observed = observed_with_overhang(obs, pose);
   merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
   note_floor(obs, observed);
+  if (x_measured) note_end_wall(obs, pose, 0.0);
   reconstruct_occluded_steps(map_, config_.reconstruction, config_.stair, config_.confirmation.min_confirmations,
                              config_.merge.max_model_steps);
   accepted_.push_back({obs.source_utime, pose, to_base_m(obs)});
@@ -369,6 +418,7 @@ void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured)
   // A dead-reckoned pose continues the prior: neither a measured position nor a speed change.
   if (x_measured) {
     x_measured_utime_ = obs.source_utime;
+    x_measured_uncertainty_m_ = 0.0;
     note_speed_change();
   }
   ++model_.observations_fused;

@@ -10,6 +10,7 @@
 #include "tracker/merge.hpp"
 #include "tracker/odometry_prior.hpp"
 #include "tracker/pose.hpp"
+#include "tracker/registration.hpp"
 #include "tracker/stair_map.hpp"
 
 #include <deque>
@@ -50,10 +51,13 @@ class Tracker {
   void accept(const Observation& obs, const Pose4& pose, bool x_measured);
   // Marks the model's first step as standing on a seen floor (tracker.cpp).
   void note_floor(const Observation& obs, const std::vector<ObservedStep>& observed);
+  // The end wall in view (end_wall.hpp), seen from `pose`, which the prior may have carried this far off.
+  void note_end_wall(const Observation& obs, const Pose4& pose, double prior_uncertainty_m);
   Pose4 with_observed_height(const Observation& obs, Pose4 pose) const;
-  std::optional<Pose4> on_planes_in_view(const Observation& obs, const Pose4& prior) const;
+  std::optional<Registration> on_planes_in_view(const Observation& obs, const Pose4& prior) const;
   Pose4 predict(int64_t utime, const Eigen::Vector3d& to_base_m) const;
   double observed_yaw(double axis_rad, double prior_yaw_rad) const;
+  double yaw_of_risers_in_view(const Observation& obs, double prior_yaw_rad) const;
   Eigen::Vector3d to_base_m(const Observation& obs) const;
   bool odometry_covers(int64_t utime) const;
   std::vector<ObservedStep> observed_with_overhang(const Observation& obs, const Pose4& pose) const;
@@ -81,10 +85,13 @@ class Tracker {
   // A frame placed on the planes in view since the last accepted one: where the camera was last
   // seen, so the prior starts there (its velocity stays the accepted poses').
   std::optional<Accepted> placed_;
-  // When the camera's position along the stair was last measured (registered on the model's risers
-  // or nosings, not carried by the prior), and how much its speed along the stair changed across
-  // the velocity window then (m/s): the prior's position may be off by that speed times the time since.
+  // When the camera's position along the stair was last measured (registered on the model's risers,
+  // nosings or end wall, not carried by the prior), how far off that measurement may be beyond the
+  // registration's own uncertainty (m: the end wall's, where it alone placed the camera), and how much
+  // its speed along the stair changed across the velocity window then (m/s): the prior's position may
+  // be off by that speed times the time since.
   int64_t x_measured_utime_ = 0;
+  double x_measured_uncertainty_m_ = 0.0;
   double speed_change_mps_ = 0.0;
   int64_t last_utime_ = 0;
   bool have_utime_ = false;

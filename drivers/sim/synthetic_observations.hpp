@@ -16,6 +16,7 @@ namespace stairs::synthetic {
 struct StairGeometry {
   std::vector<double> riser_m, tread_m;  // per step, bottom to top (last tread = top landing)
   double width_m = 1.0;
+  bool end_wall = false;  // a wall stands where the top landing ends (its tread depth beyond its nosing)
   // Nosing of step i in the stair frame: (x, z).
   double nosing_x(size_t i) const {
     double x = 0;
@@ -114,11 +115,25 @@ class ObservationMaker {
       }
       steps.push_back(s);
     }
-    // Nearest first; perception reports no stair below two steps.
+    // Nearest first; perception reports no stair below two steps, and then no plane of one.
     if (descending) std::reverse(steps.begin(), steps.end());
+    if (steps.size() < 2) {
+      obs.planes.clear();
+      steps.clear();
+    }
+    // The end wall, facing down the flight: a plane no step owns, reported with or without steps.
+    if (g_.end_wall && !descending) {
+      const size_t top = g_.riser_m.size() - 1;
+      const double X = g_.nosing_x(top) + g_.tread_m[top], ahead = X - cam.position_m.x();
+      const double half_fov = ahead * std::tan(28 * M_PI / 180);
+      const double y_lo = std::max(-0.5 * g_.width_m, cam.position_m.y() - half_fov);
+      const double y_hi = std::min(0.5 * g_.width_m, cam.position_m.y() + half_fov);
+      if (ahead > 0.5 && ahead < 3.5 && y_hi - y_lo > 0.2)
+        obs.planes.push_back(plane(PlaneKind::Riser, Eigen::Vector3d(X, y_hi, g_.nosing_z(top)),
+                                   Eigen::Vector3d(0, 0, 1.2), y_hi - y_lo, cam.position_m, to_cam));
+    }
     tilt(obs, steps);
-    if (steps.size() >= 2) obs.steps = steps;
-    else obs.planes.clear();
+    obs.steps = steps;
     return obs;
   }
 

@@ -59,11 +59,11 @@ TEST(Odometry, KeepsTheModelAndTheCameraAcrossAFiveSecondGap) {
 // 5 s, the model is dropped and started again from what is in view then. The
 // test shows what odometry is for; it fails if that ever stops being true
 // (then the gap test above proves nothing about odometry).
+// (The camera is known on the top landing all the same: the new model's end wall places it there,
+// tracker/end_wall.hpp.)
 TEST(Odometry, WithoutItTheSameGapLosesTheModel) {
   const eval::Score s = walk("gap_up_no_odometry", "--preset straight_up --speed 0.3 --gap 10:5");
   EXPECT_LT(s.model_steps_detected, s.model_steps_real);
-  ASSERT_TRUE(s.tracked_camera_coverage);
-  EXPECT_LT(*s.tracked_camera_coverage, 0.9);
 }
 
 // The robot goes up the flight, turns on the spot on the top landing (4 s for
