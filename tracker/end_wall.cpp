@@ -1,6 +1,7 @@
 #include "tracker/end_wall.hpp"
 
 #include "tracker/config.hpp"
+#include "tracker/registration.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,10 +25,7 @@ void note_end_wall(StairMap& map, const Observation& obs, const Pose4& pose, dou
   const MapStep& top = map.steps.back();
   const double min_x = top.x() + c.min_run_fraction * typical_tread_m(map, stair);
   if (map.end_wall_x_m.known() && map.end_wall_x_m.value < min_x) forget(map);
-  std::vector<bool> owned(obs.planes.size(), false);
-  for (const Step& s : obs.steps)
-    for (int k : {s.riser_plane, s.tread_plane})
-      if (k >= 0 && k < static_cast<int>(owned.size())) owned[k] = true;
+  const std::vector<bool> owned = planes_owned_by_steps(obs);
   const Eigen::Isometry3d T = pose.isometry();
   const double max_foot_dz = c.max_foot_offset_rise_fraction * typical_riser_m(map, stair);
   const double min_facing = std::cos(c.max_normal_deg * M_PI / 180.0);

@@ -115,6 +115,14 @@ Eigen::Vector2d nearest_nosing(const Profile& p, const Eigen::Vector3d& q) {
 
 }  // namespace
 
+std::vector<bool> planes_owned_by_steps(const Observation& obs) {
+  std::vector<bool> owned(obs.planes.size(), false);
+  for (const Step& s : obs.steps)
+    for (int k : {s.riser_plane, s.tread_plane})
+      if (k >= 0 && k < static_cast<int>(owned.size())) owned[k] = true;
+  return owned;
+}
+
 // The level the lowest seen step stands on: a horizontal plane no step owns,
 // within max_offset_rise_fraction of a rise of where that step's riser begins
 // and reaching to within max_gap_m of it along the stair (a table top at that
@@ -134,10 +142,7 @@ int foot_plane(const Observation& obs, const RegistrationConfig& c) {
   Eigen::Vector2d u(std::cos(axis), std::sin(axis));
   if (u.dot(lowest->nosing_m.head<2>()) < 0) u = -u;
   const double riser_at = u.dot(lowest->nosing_m.head<2>());
-  std::vector<bool> owned(obs.planes.size(), false);
-  for (const Step& s : obs.steps)
-    for (int k : {s.riser_plane, s.tread_plane})
-      if (k >= 0 && k < static_cast<int>(owned.size())) owned[k] = true;
+  const std::vector<bool> owned = planes_owned_by_steps(obs);
   int best = -1;
   double best_dz = c.foot_max_offset_rise_fraction * *lowest->riser_height_m;
   for (size_t k = 0; k < obs.planes.size(); ++k) {

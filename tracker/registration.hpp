@@ -28,6 +28,9 @@ struct RegistrationInput {
 // stair; -1 if none.
 int foot_plane(const Observation& obs, const RegistrationConfig& c);
 
+// Which of the observation's planes a step owns (its riser or its tread).
+std::vector<bool> planes_owned_by_steps(const Observation& obs);
+
 // Every level in view (tread and landing planes) as tread points: a frame without steps.
 RegistrationInput level_points(const Observation& obs, const RegistrationConfig& c);
 

@@ -61,8 +61,9 @@ class Tracker {
   Eigen::Vector3d to_base_m(const Observation& obs) const;
   bool odometry_covers(int64_t utime) const;
   std::vector<ObservedStep> observed_with_overhang(const Observation& obs, const Pose4& pose) const;
-  // x_uncertainty_m: how far the motion prior may have carried the position along the stair off since it
-  // was last registered (0: registered); registration.position_uncertainty_m is added to it.
+  // x_uncertainty_m: how far off the position along the stair may be beyond what a registration on the
+  // model's steps leaves (0: so registered; else the motion prior's drift since, or the end wall's own
+  // uncertainty where it alone placed the camera); registration.position_uncertainty_m is added to it.
   void publish(const Observation& obs, const Pose4& pose, bool camera_valid, double x_uncertainty_m = 0.0);
   double prior_x_uncertainty_m(int64_t utime, bool with_odometry) const;
   void note_speed_change();
