@@ -538,6 +538,7 @@ stair_model_t to_lcm(const StairModel& model, int64_t utime, int64_t source_utim
   m.base_height_m = static_cast<float>(model.base_height_m);
   m.base_step_index = static_cast<int16_t>(model.base_step_index);
   m.base_beneath_known = model.base_beneath_known;
+  m.camera_position_uncertainty_m = static_cast<float>(model.camera_position_uncertainty_m);
   return m;
 }
 
@@ -575,7 +576,7 @@ bool from_lcm(const stair_model_t& m, StairModel& model, std::string& error) {
   out.camera_position_m = position_of(m.camera_position_m);
   out.camera_orientation = quaternion_of(m.camera_quaternion_wxyz);
   if (!out.camera_position_m.allFinite() || !out.camera_orientation.coeffs().allFinite() ||
-      !std::isfinite(m.camera_height_m)) {
+      !std::isfinite(m.camera_height_m) || !std::isfinite(m.camera_position_uncertainty_m)) {
     error = "model camera pose with NaN/inf";
     return false;
   }
@@ -598,6 +599,7 @@ bool from_lcm(const stair_model_t& m, StairModel& model, std::string& error) {
   out.status = m.status;
   out.confirmed = m.confirmed;
   out.camera_beneath_known = m.camera_beneath_known;
+  out.camera_position_uncertainty_m = m.camera_position_uncertainty_m;
   model = std::move(out);
   return true;
 }

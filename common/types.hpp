@@ -145,6 +145,10 @@ struct StairModel {
   // camera_height_m and camera_step_index hold: the camera is over a part of
   // the stair the model has seen (false beyond its far end).
   bool camera_beneath_known = false;
+  // How far off camera_position_m may be along the stair (m): the registration's uncertainty, plus
+  // what the motion prior may have drifted since; the base's position is as uncertain. -1 without
+  // a camera.
+  double camera_position_uncertainty_m = -1.0;
   // The carrier's base frame (common/mount.hpp camera_in_base: x forward, y left, z up, origin on the
   // ground beneath the camera), from the camera and the config's "mount"; valid only with both.
   bool base_valid = false;

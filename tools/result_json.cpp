@@ -34,12 +34,13 @@ const char* direction_name(Direction d) {
 
 json tracked_camera_to_json(const TrackedCamera& c) {
   if (!c.valid) return {{"valid", false}, {"height_m", nullptr}, {"step_index", nullptr}, {"position_m", nullptr},
-                        {"quaternion_wxyz", nullptr}};
+                        {"position_uncertainty_m", nullptr}, {"quaternion_wxyz", nullptr}};
   const Eigen::Quaterniond& q = c.orientation;
   return {{"valid", true},
           {"height_m", or_null(c.height_m)},
           {"step_index", or_null(c.step_index)},
           {"position_m", {c.position_m.x(), c.position_m.y(), c.position_m.z()}},
+          {"position_uncertainty_m", or_null(c.position_uncertainty_m)},
           {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
 }
 

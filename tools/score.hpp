@@ -22,6 +22,7 @@ struct TrackedCamera {
   std::optional<int> step_index;
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // camera centre in the model's stair frame
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // optical -> model stair frame
+  std::optional<double> position_uncertainty_m;  // how far off position_m may be along the stair
 };
 
 // What the replay keeps of one frame.

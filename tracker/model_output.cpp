@@ -170,6 +170,7 @@ void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid, dou
   out.camera_step_index = out.base_step_index = -1;
   out.camera_height_m = out.base_height_m = 0.0;
   out.camera_beneath_known = out.base_beneath_known = out.base_valid = false;
+  out.camera_position_uncertainty_m = out.camera_valid ? x_uncertainty_m : -1.0;
   if (steps.empty()) return;
 
   const MapStep& first = *steps.front();

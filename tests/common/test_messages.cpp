@@ -145,6 +145,7 @@ TEST(Messages, ModelRoundTrip) {
   model.base_height_m = 0.02;
   model.base_step_index = 2;
   model.base_beneath_known = true;
+  model.camera_position_uncertainty_m = 0.035;
   model.planes = {sample_plane(PlaneKind::Landing, 3)};
   const stair_model_t m = round_trip(to_lcm(model, 5, 4, 3));
   StairModel back;
@@ -163,6 +164,7 @@ TEST(Messages, ModelRoundTrip) {
   EXPECT_EQ(back.base_step_index, 2);
   EXPECT_NEAR(back.base_height_m, 0.02, 1e-6);
   EXPECT_NEAR(back.base_position_m.x(), -0.9, 1e-12);
+  EXPECT_NEAR(back.camera_position_uncertainty_m, 0.035, 1e-6);
   EXPECT_NEAR(back.base_orientation.angularDistance(model.base_orientation), 0.0, 1e-9);
   ASSERT_EQ(back.planes.size(), 1u);
   EXPECT_EQ(back.planes[0].kind, PlaneKind::Landing);
