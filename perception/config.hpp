@@ -198,6 +198,9 @@ struct GravityConfig {
   double carry_max_s = 0.3;                  // s; a pitch no plane measures (walls along the view, no
                                              // tread) is the last measured one this long at most: a hand-
                                              // held camera sways ~5 deg/s, 1.5 deg (consensus_deg) in 0.3 s
+  double sway_deg_per_s = 10.0;  // deg/s; how fast a carried pitch may wander from the measured one: a
+                                 // walker's camera swings a few degrees at step frequency (the simulated
+                                 // hand-held walks: 6.5 deg/s), the prior's uncertainty
   float min_support_fraction = 0.1f;         // with a prior: treads with less support than this
                                              // fraction of the largest vertical family yield to it
   float second_family_min_angle_deg = 30.0f;  // deg; a second vertical family (risers and a wall) must
@@ -222,6 +225,7 @@ struct GravityConfig {
     v("prior_max_deg", prior_max_deg, 0.0f, 180.0f);
     v("prior_max_gap_s", prior_max_gap_s, 0.0, 3600.0);
     v("carry_max_s", carry_max_s, 0.0, 3600.0);
+    v("sway_deg_per_s", sway_deg_per_s, 0.0, 1000.0);
     v("min_support_fraction", min_support_fraction, 0.0f, 1.0f);
     v("second_family_min_angle_deg", second_family_min_angle_deg, 1.0f, 90.0f);
     v("consensus_deg", consensus_deg, 0.01f, 45.0f);

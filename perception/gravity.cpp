@@ -168,7 +168,8 @@ bool tilt_measured_along(const std::vector<Segment>& segments, const Eigen::Vect
 }  // namespace
 
 std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const GravityConfig& cfg,
-                                           const std::optional<Eigen::Vector3f>& prior, bool* carried) {
+                                           const std::optional<Eigen::Vector3f>& prior, bool* carried,
+                                           double prior_information) {
   if (carried) *carried = false;
   const float deg = static_cast<float>(M_PI) / 180.0f;
   const float cos_tilt = std::cos(cfg.max_tilt_from_image_up_deg * deg);
@@ -219,14 +220,28 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   // pitch counts (the tilt along the view, where a flight is measured): an
   // error e there changes each rise by run * tan(e), 0.7 cm a degree on a 0.4 m
   // run; one across the view only what lies side by side.
+  // A carried pitch is the prior's, weighed against what this frame's planes know of it: a tread
+  // sliver that cannot measure it must not set it either (a level camera's landing-edge strip, 1.4 cm
+  // of it, set it 3 degrees off, and a descent's first three frames measured every rise 1.5 cm short).
   Eigen::Vector3f along = fitted.cross(v1->normal);
   const Eigen::Vector3f forward = Eigen::Vector3f::UnitZ() - fitted.z() * fitted;  // optical axis, levelled
-  if (carried && along.norm() > 0.0f && forward.norm() > 0.0f) {
+  bool pitch_carried = false;
+  if (along.norm() > 0.0f && forward.norm() > 0.0f) {
     along.normalize();
     const bool pitch = std::abs(along.dot(forward.normalized())) >= std::sqrt(0.5f);
-    *carried = pitch && !tilt_measured_along(segments, fitted, along, cfg);
+    pitch_carried = pitch && !tilt_measured_along(segments, fitted, along, cfg);
   }
-  return fitted;
+  if (carried) *carried = pitch_carried;
+  if (!pitch_carried) return fitted;
+  // What the planes do know of the pitch weighs against the prior's, which wanders while unmeasured
+  // (a descent's slivers tracked a camera tilting 5 deg/s to within half a degree).
+  const Eigen::Vector3d a = along.cast<double>();
+  const double measured = a.dot(tilt_information(segments, fitted, cfg.refine_first_deg, cfg, true) * a);
+  const double w = std::isinf(prior_information) ? 0.0 : measured / (measured + prior_information);
+  const Eigen::Vector3f axis = up.cross(fitted);
+  if (!(w > 0.0) || axis.norm() < 1e-9f) return up;
+  const float angle = std::atan2(axis.norm(), up.dot(fitted));
+  return (Eigen::AngleAxisf(static_cast<float>(w) * angle, axis.normalized()) * up).normalized();
 }
 
 CameraPose pose_from_up(const Eigen::Vector3f& up_optical) {

@@ -4,6 +4,7 @@
 
 #include "perception/region_growing.hpp"
 
+#include <limits>
 #include <optional>
 
 namespace stairs {
@@ -15,11 +16,13 @@ namespace stairs {
 // its normal (thesis Algorithm 4 weights by support alone). Segments marked bent
 // (concave_corners.hpp) take no part. Nothing if none fits. `carried` (when
 // given): up's pitch (its tilt along the levelled optical axis) is the prior's,
-// measured by no plane of this frame (walls along the view, no tread that knows
-// its normal).
+// measured by no plane of this frame to within consensus_deg (walls along the view, no tread
+// that knows its normal), weighed against what the planes know of it by `prior_information`
+// (1 / rad^2: how well the prior's pitch is still known; infinite keeps the prior's).
 std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments, const GravityConfig& cfg,
                                            const std::optional<Eigen::Vector3f>& prior = std::nullopt,
-                                           bool* carried = nullptr);
+                                           bool* carried = nullptr,
+                                           double prior_information = std::numeric_limits<double>::infinity());
 
 // Pose from the up vector: pitch, roll (DESIGN.md conventions) and
 // gravity_rotation (optical -> x forward, y left, z up). Height and distance

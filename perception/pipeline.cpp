@@ -83,7 +83,12 @@ Observation Pipeline::process(const DepthImage& frame) {
   const int64_t gap_us = frame.utime - prior_utime_;
   if (gap_us < 0 || gap_us > cfg_.gravity.prior_max_gap_s * 1e6) up_prior_.reset();
   bool carried = false;
-  std::optional<Eigen::Vector3f> planes_up = estimate_up(segments, cfg_.gravity, up_prior_, &carried);
+  // The prior's pitch is known to the sway since it was measured (a frame's worth at least).
+  const double since_measured_s = std::max(1e-6 * static_cast<double>(frame.utime - measured_utime_), 0.0);
+  const double prior_sigma_rad = cfg_.gravity.sway_deg_per_s * M_PI / 180.0 * since_measured_s;
+  std::optional<Eigen::Vector3f> planes_up = estimate_up(
+      segments, cfg_.gravity, up_prior_, &carried,
+      prior_sigma_rad > 0.0 ? 1.0 / (prior_sigma_rad * prior_sigma_rad) : std::numeric_limits<double>::infinity());
   // A pitch no plane measures is carried from the last frame that measured it,
   // for a while only: the camera turns meanwhile.
   const bool carried_too_long =

@@ -38,11 +38,17 @@ struct StairPriorConfig {
 struct ConfirmationConfig {
   int min_seed_steps = 2;     // steps an observation needs to start a model, and confirmed steps to publish it
   int min_confirmations = 2;  // observations a step needs to be published
+  // Observations a step needs to be published with the frame that saw it, when it continues the
+  // confirmed steps that frame registered on (min_seed_steps of them): the next step of a flight comes
+  // into view a frame before a second one confirms it, and it is the same flight's step (1 publishes it
+  // with that frame only, min_confirmations switches it off).
+  int min_confirmations_continuing = 1;
 
   template <class V>
   void visit(V& v) {
     v("min_seed_steps", min_seed_steps, 1, 64);
     v("min_confirmations", min_confirmations, 1, 1000);
+    v("min_confirmations_continuing", min_confirmations_continuing, 1, 1000);
   }
 };
 

@@ -144,6 +144,7 @@ int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4&
           const StairPriorConfig& stair, double min_distance_m) {
   const double riser = typical_riser_m(map, stair);
   const double tread = typical_tread_m(map, stair);
+  ++map.merges;
   // Match against the model as it was before this observation.
   std::vector<int> match(observed.size(), -1);
   std::vector<bool> taken(map.steps.size(), false);
@@ -160,7 +161,10 @@ int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4&
     if (match[i] >= 0) taken[match[i]] = true;
   }
   for (size_t i = 0; i < observed.size(); ++i)
-    if (match[i] >= 0) update(map.steps[match[i]], observed[i], pose, c, min_distance_m);
+    if (match[i] >= 0) {
+      update(map.steps[match[i]], observed[i], pose, c, min_distance_m);
+      map.steps[match[i]].last_merge = map.merges;
+    }
 
   int inserted = 0;
   for (size_t i = 0; i < observed.size(); ++i) {
@@ -172,6 +176,7 @@ int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4&
     if (!fits_between(map, static_cast<size_t>(at), o, riser, tread, c)) continue;
     MapStep m;
     update(m, o, pose, c, min_distance_m);
+    m.last_merge = map.merges;
     map.steps.insert(map.steps.begin() + at, std::move(m));
     ++inserted;
   }

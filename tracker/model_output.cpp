@@ -31,18 +31,41 @@ Plane box_plane(PlaneKind kind, const Eigen::Vector3d& bottom_left, const Eigen:
   return p;
 }
 
-// The steps a model publishes: confirmed by min_confirmations observations
-// (or reconstructed between such), and none until min_seed_steps are.
-std::vector<const MapStep*> published_steps(const StairMap& map, const ConfirmationConfig& c, bool& confirmed) {
-  std::vector<const MapStep*> steps;
-  int n = 0;
-  for (const auto& s : map.steps) {
-    n += !s.reconstructed && s.confirmations >= c.min_confirmations;
-    if (s.reconstructed || s.confirmations >= c.min_confirmations) steps.push_back(&s);
+// The steps a model publishes: confirmed by min_confirmations observations (or reconstructed between
+// such), and none until min_seed_steps are. With the model of the frame merged last (`just_merged`),
+// also that frame's steps that continue, step by step, the confirmed steps it saw, where it saw
+// min_seed_steps of them (it registered on the flight): a flight's next step comes into view a frame
+// before a second frame can confirm it. Such a step says so (its confirmations) and goes again with
+// the next frame unless that one sees it too: one odd frame leaves nothing in the model.
+std::vector<const MapStep*> published_steps(const StairMap& map, const ConfirmationConfig& c, bool just_merged,
+                                            bool& confirmed) {
+  const size_t n = map.steps.size();
+  std::vector<char> in(n, 0);
+  int confirmed_steps = 0, seen_confirmed = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const MapStep& s = map.steps[i];
+    const bool by_count = !s.reconstructed && s.confirmations >= c.min_confirmations;
+    confirmed_steps += by_count;
+    seen_confirmed += by_count && s.last_merge == map.merges;
+    in[i] = s.reconstructed || by_count;
   }
   // One odd frame, or furniture seen once, never makes a model.
-  confirmed = n >= c.min_seed_steps;
-  if (!confirmed) steps.clear();
+  confirmed = confirmed_steps >= c.min_seed_steps;
+  if (confirmed && just_merged && seen_confirmed >= c.min_seed_steps) {
+    const auto seen_now = [&](size_t i) { return map.steps[i].last_merge == map.merges; };
+    const auto continuing = [&](size_t i, size_t next_to) {
+      return !in[i] && seen_now(i) && map.steps[i].confirmations >= c.min_confirmations_continuing && in[next_to] &&
+             seen_now(next_to);
+    };
+    for (size_t i = 1; i < n; ++i)
+      if (continuing(i, i - 1)) in[i] = 1;  // up the flight
+    for (size_t i = n; i-- > 1;)
+      if (continuing(i - 1, i)) in[i - 1] = 1;  // down it
+  }
+  std::vector<const MapStep*> steps;
+  if (confirmed)
+    for (size_t i = 0; i < n; ++i)
+      if (in[i]) steps.push_back(&map.steps[i]);
   return steps;
 }
 
@@ -160,12 +183,12 @@ void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const M
 
 }  // namespace
 
-void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid, double x_uncertainty_m,
+void fill_model(const StairMap& map, bool just_merged, const Pose4& camera, bool camera_valid, double x_uncertainty_m,
                 const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
                 const StairPriorConfig& stair, const MountConfig& mount, double overhang_m, StairModel& out) {
   out.flights.clear();
   out.planes.clear();
-  const std::vector<const MapStep*> steps = published_steps(map, c, out.confirmed);
+  const std::vector<const MapStep*> steps = published_steps(map, c, just_merged, out.confirmed);
   out.camera_valid = camera_valid && !steps.empty();
   out.camera_step_index = out.base_step_index = -1;
   out.camera_height_m = out.base_height_m = 0.0;

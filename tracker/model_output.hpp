@@ -20,8 +20,9 @@ struct StairPriorConfig;
 // observation's optical -> gravity. `overhang_m`: the nosing's edge stands this far before the face of
 // a seen riser (nosing_overhang.hpp); the published nosings and the step beneath use the edge.
 // `x_uncertainty_m`: how far off the camera's position along the stair may be (0 where measured); the
-// surface beneath is unknown where a nosing lies that close.
-void fill_model(const StairMap& map, const Pose4& camera, bool camera_valid, double x_uncertainty_m,
+// surface beneath is unknown where a nosing lies that close. `just_merged`: the frame this model is for
+// is the one the map merged last (its steps that continue the flight go with it, model_output.cpp).
+void fill_model(const StairMap& map, bool just_merged, const Pose4& camera, bool camera_valid, double x_uncertainty_m,
                 const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
                 const StairPriorConfig& stair, const MountConfig& mount, double overhang_m, StairModel& out);
 

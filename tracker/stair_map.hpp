@@ -35,6 +35,7 @@ struct MapStep {
   RunningMean y_min_m, y_max_m;  // lateral bounding box
   double tread_far_x_m = -1e9;   // farthest observed back edge of the tread (of its visible part: a lower bound)
   int confirmations = 0;
+  int last_merge = -1;           // the StairMap::merges count of the last observation that saw it
   bool reconstructed = false;    // filled in between seen steps, never observed
   bool on_seen_floor = false;    // its riser stands on a level seen deeper than any tread (a floor or a
                                  // landing): what lies before it is known, not just one rise below
@@ -51,6 +52,7 @@ struct MapStep {
 
 struct StairMap {
   std::vector<MapStep> steps;  // sorted by x (bottom to top)
+  int merges = 0;              // observations merged
   // A vertical face standing on the top level beyond the last step and facing down the flight (the
   // wall or door where a top landing ends; tracker/end_wall.hpp): its position along x, and whether
   // enough observations saw it to use it.

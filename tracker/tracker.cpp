@@ -67,6 +67,7 @@ bool Tracker::seed(const Observation& obs) {
   pose.yaw_rad = *yaw;
   const std::vector<ObservedStep> observed = observed_with_overhang(obs, pose);
   merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
+  merged_now_ = true;
   if (map_.empty()) return false;
   note_floor(obs, observed);
   accepted_.push_back({obs.source_utime, pose, to_base_m(obs)});
@@ -191,6 +192,7 @@ double Tracker::yaw_of_risers_in_view(const Observation& obs, double prior_yaw_r
 const StairModel& Tracker::update(const Observation& obs) {
   const auto start = std::chrono::steady_clock::now();
   const std::string restarted = restart_if_time_went_back(obs.source_utime);
+  merged_now_ = false;
   if (have_utime_ && obs.source_utime <= last_utime_) {
     ++dropped_out_of_order_;
     model_.status = "dropped an out-of-order observation (" + std::to_string(dropped_out_of_order_) + " so far)";
@@ -352,8 +354,15 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   // Or only the level it stands on overlaps the model (that landing, its near part seen before):
   // the level fixes the height and nothing the position along the stair. A whole-step search fitted
   // the next flight onto the last one, its copy (4 false model steps on a two-flight walk).
+  // Nosings alone fix x and z where perception fitted no plane (a level camera sees a descent's far
+  // treads as slivers): registered on them where every one within the model agrees, at least
+  // min_seed_steps (one nosing fits any step). Placed by the motion prior instead, a descent's second
+  // frame was merged 7 cm off (no velocity after the seed yet), and every later one with it.
+  const bool on_nosings = input.riser_points.empty() && input.tread_points.empty() &&
+                          reg.x_within >= config_.confirmation.min_seed_steps && reg.x_inliers == reg.x_within;
+  if (on_nosings) reg.inlier_ratio = 1.0;
   const bool unplaced = (with_odometry || since_accept_s <= config_.motion.max_prediction_s) &&
-                        (reg.within == 0 || reg.x_inliers == 0);
+                        ((reg.within == 0 && !on_nosings) || reg.x_inliers == 0);
   const Pose4 by_prior = unplaced ? with_observed_height(obs, start_pose) : start_pose;
   const bool dead_reckoned =
       unplaced && (reg.within == 0 || foot_agreement_beyond_model(input, map_, by_prior, config_.registration,
@@ -406,6 +415,7 @@ bool Tracker::reseed(const Observation& obs, const std::string& why) {
 void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured) {
   const std::vector<ObservedStep> observed = observed_with_overhang(obs, pose);
   merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
+  merged_now_ = true;
   note_floor(obs, observed);
   if (x_measured) note_end_wall(obs, pose, 0.0);
   reconstruct_occluded_steps(map_, config_.reconstruction, config_.stair, config_.confirmation.min_confirmations,
@@ -429,7 +439,7 @@ void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured)
 // place and over the wrong step, a millimetre from a nosing (17 of 78 wrong steps over 99 walks).
 void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid, double x_uncertainty_m) {
   x_uncertainty_m += config_.registration.position_uncertainty_m;
-  fill_model(map_, pose, camera_valid, x_uncertainty_m, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
+  fill_model(map_, merged_now_, pose, camera_valid, x_uncertainty_m, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
              flight_overhang_m(map_, config_.overhang),
              model_);
 }

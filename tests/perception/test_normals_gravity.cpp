@@ -303,6 +303,36 @@ TEST(PerceptionGravity, AFarTreadMeasuresPitchOnlyToTheDepthResolutionAcrossIt) 
   EXPECT_TRUE(carried);
 }
 
+// A level camera reaching the top of a descent between two walls (a Kinect v2 level walk): the only
+// level plane is the landing's edge, a strip 1.4 cm deep (standard deviation) at 1.4 m whose fit is
+// 3 deg off in pitch. Its fit knows its normal well enough to win the walls' consensus, but not to
+// the depth's resolution across it: the pitch is carried, and a carried pitch is the prior's. It was
+// the strip's, and the flight's first three frames measured every rise 1.5 cm short.
+TEST(PerceptionGravity, ACarriedPitchIsThePriorsNotTheStripsThatCouldNotMeasureIt) {
+  const double pitch = -10.0;
+  const Eigen::Vector3d tilted = Eigen::AngleAxisd(3.0 * M_PI / 180, Eigen::Vector3d::UnitY()) * Eigen::Vector3d::UnitZ();
+  Segment strip = fitted_segment_at(pitch, tilted, 285, 0.014, 0.38, 0.0015f, 1.41f);
+  const Eigen::Vector3f forward = (test::optical_to_world(pitch, 0).transpose() * Eigen::Vector3d::UnitX()).cast<float>();
+  strip.axis[0] = (forward - forward.dot(strip.normal) * strip.normal).normalized();
+  strip.axis[1] = strip.normal.cross(strip.axis[0]).normalized();
+  const std::vector<Segment> segs = {fitted_segment_at(pitch, Eigen::Vector3d::UnitY(), 7427, 0.79, 0.83, 0.0011f, 2.5f),
+                                     fitted_segment_at(pitch, -Eigen::Vector3d::UnitY(), 4207, 0.49, 1.12, 0.0010f, 3.5f),
+                                     strip};
+  bool carried = false;
+  const auto up = estimate_up(segs, GravityConfig{}, true_up(pitch), &carried);
+  ASSERT_TRUE(up.has_value());
+  EXPECT_TRUE(carried);
+  EXPECT_GT(up->dot(true_up(pitch)), std::cos(0.1 * M_PI / 180));
+  // The prior's pitch weighs by how well it is still known: one known to a degree (a tenth of a
+  // second's sway) keeps most of it, one hardly known gives way to what the strip says.
+  const auto one_degree = estimate_up(segs, GravityConfig{}, true_up(pitch), &carried, std::pow(180 / M_PI, 2));
+  ASSERT_TRUE(one_degree.has_value());
+  EXPECT_GT(one_degree->dot(true_up(pitch)), std::cos(0.5 * M_PI / 180));
+  const auto unknown = estimate_up(segs, GravityConfig{}, true_up(pitch), &carried, 1e-6);
+  ASSERT_TRUE(unknown.has_value());
+  EXPECT_GT(unknown->dot(strip.normal), std::cos(0.1 * M_PI / 180));
+}
+
 TEST(PerceptionGravity, ABentTreadIsOutvotedByThePlanesThatAgree) {
   // A camera at -2.4 deg (level, 0.9 m high) in front of a flight: two treads
   // of the same size, one of them tilted 3.3 deg as a whole (all of it in a

@@ -224,6 +224,56 @@ TEST(Tracker, ASingleOddFrameNeverLeavesAStepInTheModel) {
   EXPECT_FALSE(tracker.model().flights.empty());
 }
 
+size_t steps_in(const StairModel& m) {
+  size_t n = 0;
+  for (const auto& f : m.flights) n += f.steps.size();
+  return n;
+}
+
+// A flight's next step comes into view a frame before a second frame can confirm it: a step that
+// continues the confirmed steps a frame registered on goes with that frame's model, saying it was
+// seen once, and not with the next unless that one sees it too. A frame that adds a step above the
+// top of a confirmed model: published with it (1 confirmation), gone the frame after, not in the
+// final model; with min_confirmations_continuing at min_confirmations, never published.
+TEST(Tracker, AStepContinuingTheFlightGoesWithTheFrameThatSawItOnly) {
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  const size_t real = kStair.riser_m.size();
+  auto run = [&](int continuing, size_t& with_odd, size_t& after, int& odd_confirmations, size_t& final_steps) {
+    TrackerConfig c;
+    c.confirmation.min_confirmations_continuing = continuing;
+    Tracker tracker(c);
+    ObservationMaker maker(kStair, 5);
+    size_t k = 0;
+    // Until the model holds every real step (the top one in view).
+    for (; k < cams.size() && !(tracker.model().confirmed && steps_in(tracker.model()) == real); ++k)
+      tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+    ASSERT_LT(k + 2, cams.size());
+    Observation odd = maker.make(cams[k], static_cast<int64_t>(k) * 33333);
+    ASSERT_GE(odd.steps.size(), 2u);
+    Step above = odd.steps.back();  // a step above the top one, on the top landing
+    above.nosing_m += Eigen::Vector3d(0.28, 0.0, 0.17);
+    above.riser_plane = above.tread_plane = -1;
+    odd.steps.push_back(above);
+    const StairModel& m = tracker.update(odd);
+    with_odd = steps_in(m);
+    odd_confirmations = m.flights.back().steps.back().confirmations;
+    after = steps_in(tracker.update(maker.make(cams[k + 1], static_cast<int64_t>(k + 1) * 33333)));
+    for (k += 2; k < cams.size(); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 33333));
+    final_steps = steps_in(tracker.model());
+  };
+  size_t with_odd = 0, after = 0, final_steps = 0;
+  int confirmations = 0;
+  run(1, with_odd, after, confirmations, final_steps);
+  EXPECT_EQ(with_odd, real + 1);
+  EXPECT_EQ(confirmations, 1);
+  EXPECT_EQ(after, real);
+  EXPECT_EQ(final_steps, real);
+  run(2, with_odd, after, confirmations, final_steps);
+  EXPECT_EQ(with_odd, real);
+  EXPECT_EQ(after, real);
+  EXPECT_EQ(final_steps, real);
+}
+
 // Dark treads seen from above show nosings only: nothing to register. Where
 // the motion prior puts them on the model's steps they are merged; half a
 // tread off they would be new steps between the model's, so they are not.
@@ -257,6 +307,37 @@ TEST(Tracker, NosingsOnlyAreMergedOnlyWhereTheyLandOnTheModelsSteps) {
   EXPECT_EQ(m.observations_fused, fused);
   EXPECT_EQ(model_steps(), steps);
   EXPECT_TRUE(m.camera_valid);  // the prior still places the camera
+}
+
+// Nosings alone, where perception fitted no plane (a level camera sees a descent's far treads as
+// slivers), fix the camera along the stair and its height: every frame after the seed carries only its
+// nosings. Placed by the motion prior instead, the second frame went in where the seed was (no
+// velocity yet), and the camera never moved again.
+TEST(Tracker, NosingsAloneRegisterTheCamera) {
+  const auto cams = walk(kStair, true, 0.6, 30.0);
+  ObservationMaker maker(kStair, 8);
+  Tracker tracker;
+  int frames = 0, placed = 0, off = 0;
+  double sum = 0.0;
+  for (size_t k = 0; k < cams.size(); ++k) {
+    Observation obs = maker.make(cams[k], static_cast<int64_t>(k) * 33333);
+    if (k > 0) {
+      obs.planes.clear();
+      for (Step& st : obs.steps) st.riser_plane = st.tread_plane = -1;
+    }
+    const StairModel& m = tracker.update(obs);
+    if (k == 0 || m.flights.empty() || cams[k].position_m.x() > kStair.nosing_x(kStair.riser_m.size() - 1)) continue;
+    ++frames;
+    if (!m.camera_valid) continue;
+    ++placed;
+    const double e = std::abs(camera_past_first_nosing_m(m) - (cams[k].position_m.x() - kStair.nosing_x(0)));
+    sum += e;
+    off += e > 0.03;  // a nosing is located to 8 mm (standard deviation) in each frame
+  }
+  EXPECT_GT(frames, 50);
+  EXPECT_GE(placed, frames * 9 / 10);
+  EXPECT_EQ(off, 0) << "of " << placed;
+  EXPECT_LT(sum / std::max(placed, 1), 0.01);
 }
 
 // After a gap the prior's position along the stair is stale, and treads fix
