@@ -5,6 +5,29 @@
 
 namespace stairs {
 
+namespace {
+
+// Whether the face of riser i goes on above its top: another plane facing the same way within 45
+// degrees (not a wall along the flight), at the same place along the stair and side by side with
+// it, reaching from within the riser to above the level its top stands for (same_level_m: a nosing
+// slab's front face ends at its tread). Its top is then no nosing: a riser's upper part merged with
+// its nosing's slab is tilted, no riser's plane, and the lower part's top made a 9 cm "rise" and a
+// false step (a robot's Kinect v1 under 3 cm nosings).
+bool face_goes_on_above(const PlaneSet& ps, size_t i, const StairConfig& cfg) {
+  const PlaneExtent& e = ps.extents[i];
+  const Eigen::Vector3f& n = ps.planes[i].normal;
+  for (size_t j = 0; j < ps.planes.size(); ++j) {
+    const PlaneExtent& f = ps.extents[j];
+    if (j == i || ps.planes[j].kind == PlaneKind::Tread || ps.planes[j].normal.dot(n) < std::sqrt(0.5f)) continue;
+    if (std::abs(f.s_mean - e.s_mean) > cfg.riser_at_nosing_m) continue;
+    if (std::min(f.t_max, e.t_max) <= std::max(f.t_min, e.t_min)) continue;
+    if (f.z_min < e.z_max && f.z_max > e.z_max + cfg.same_level_m) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>& edges, const StairConfig& cfg) {
   std::vector<Level> levels;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
@@ -26,7 +49,7 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   const float near = cfg.riser_at_nosing_m;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
-    if (ps.planes[i].kind != PlaneKind::Riser || !e.top_in_view) continue;
+    if (ps.planes[i].kind != PlaneKind::Riser || !e.top_in_view || face_goes_on_above(ps, i, cfg)) continue;
     auto same = std::find_if(tops.begin(), tops.end(), [&](const Level& l) {
       return std::abs(l.z - e.z_max) < same_level && std::abs(l.s_min - e.s_mean) < near &&
              std::max(l.t_min, e.t_min) - std::min(l.t_max, e.t_max) < near;

@@ -292,6 +292,43 @@ TEST(PerceptionSteps, SingleCurbIsNoStaircase) {
   EXPECT_TRUE(o.steps.empty());
 }
 
+// A robot's camera below 3 cm nosings: a riser's upper part, merged with its nosing's slab, is
+// fitted tilted (no riser's plane) and reaches up to the image's top; its lower part is a riser of its
+// own, 4.5 cm tall. That part's top is no nosing: the face goes on above it (a 9 cm "rise" and a false
+// step before). Without the upper part in view, the lower part's top stands for a level as before.
+TEST(PerceptionSteps, ARisersTopIsNoLevelWhereItsFaceGoesOnAbove) {
+  PlaneSet ps;
+  const Eigen::Vector3f facing(-1.0f, 0.0f, 0.0f);
+  auto add = [&](PlaneKind kind, const PlaneExtent& e, const Eigen::Vector3f& n) {
+    add_plane(ps, kind, e);
+    ps.planes.back().normal = n;
+  };
+  add(PlaneKind::Tread, {0.3f, 1.0f, -0.5f, 0.5f, -0.45f, -0.45f, 0.65f, -0.45f}, Eigen::Vector3f::UnitZ());
+  for (int k = 0; k < 2; ++k) {
+    const float s = 1.0f + 0.25f * k, z0 = -0.45f + 0.18f * k;
+    add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.18f, s, z0 + 0.09f}, facing);
+  }
+  add(PlaneKind::Riser, {1.5f, 1.5f, -0.3f, 0.2f, -0.09f, -0.045f, 1.5f, -0.07f}, facing);  // the lower part
+  const StairConfig cfg;
+  const auto tops = [&] {
+    std::vector<float> z;
+    for (const Level& l : tread_levels(ps, {}, cfg)) z.push_back(l.z);
+    return z;
+  };
+  const std::vector<float> lower_part_alone = tops();
+  ASSERT_EQ(lower_part_alone.size(), 4u);
+  EXPECT_NEAR(lower_part_alone[3], -0.045f, 1e-5);
+  PlaneExtent upper{1.47f, 1.51f, -0.5f, 0.5f, -0.09f, 0.04f, 1.49f, -0.02f};
+  upper.top_in_view = false;
+  add(PlaneKind::Other, upper, Eigen::Vector3f(-0.94f, 0.0f, -0.34f).normalized());
+  const std::vector<float> with_upper = tops();
+  ASSERT_EQ(with_upper.size(), 3u);
+  EXPECT_NEAR(with_upper[2], -0.09f, 1e-5);
+  // A side wall beside the riser, reaching higher, is no face of it.
+  ps.planes.back().normal = Eigen::Vector3f::UnitY();
+  EXPECT_EQ(tops().size(), 4u);
+}
+
 TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
   // A camera level with the flight sees the floor and the risers, not the treads.
   PlaneSet ps;
