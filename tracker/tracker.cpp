@@ -67,7 +67,6 @@ bool Tracker::seed(const Observation& obs) {
   pose.yaw_rad = *yaw;
   const std::vector<ObservedStep> observed = observed_with_overhang(obs, pose);
   merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
-  merged_now_ = true;
   if (map_.empty()) return false;
   note_floor(obs, observed);
   accepted_.push_back({obs.source_utime, pose, to_base_m(obs)});
@@ -192,7 +191,6 @@ double Tracker::yaw_of_risers_in_view(const Observation& obs, double prior_yaw_r
 const StairModel& Tracker::update(const Observation& obs) {
   const auto start = std::chrono::steady_clock::now();
   const std::string restarted = restart_if_time_went_back(obs.source_utime);
-  merged_now_ = false;
   if (have_utime_ && obs.source_utime <= last_utime_) {
     ++dropped_out_of_order_;
     model_.status = "dropped an out-of-order observation (" + std::to_string(dropped_out_of_order_) + " so far)";
@@ -415,7 +413,6 @@ bool Tracker::reseed(const Observation& obs, const std::string& why) {
 void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured) {
   const std::vector<ObservedStep> observed = observed_with_overhang(obs, pose);
   merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
-  merged_now_ = true;
   note_floor(obs, observed);
   if (x_measured) note_end_wall(obs, pose, 0.0);
   reconstruct_occluded_steps(map_, config_.reconstruction, config_.stair, config_.confirmation.min_confirmations,
@@ -439,7 +436,9 @@ void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured)
 // place and over the wrong step, a millimetre from a nosing (17 of 78 wrong steps over 99 walks).
 void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid, double x_uncertainty_m) {
   x_uncertainty_m += config_.registration.position_uncertainty_m;
-  fill_model(map_, merged_now_, pose, camera_valid, x_uncertainty_m, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
+  // Merged into the map: accepted (seed and accept keep each merged frame's time; times only grow).
+  const bool merged = !accepted_.empty() && accepted_.back().utime == obs.source_utime;
+  fill_model(map_, merged, pose, camera_valid, x_uncertainty_m, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
              flight_overhang_m(map_, config_.overhang),
              model_);
 }

@@ -96,7 +96,6 @@ class Tracker {
   double speed_change_mps_ = 0.0;
   int64_t last_utime_ = 0;
   bool have_utime_ = false;
-  bool merged_now_ = false;  // this update merged its observation into the map
   int64_t dropped_out_of_order_ = 0, rejected_registrations_ = 0, resets_ = 0, time_jumps_ = 0;
 };
 
