@@ -9,10 +9,11 @@ namespace {
 
 // Whether the face of riser i goes on above its top: another plane facing the same way within 45
 // degrees (not a wall along the flight), at the same place along the stair and side by side with
-// it, reaching from within the riser to above the level its top stands for (same_level_m: a nosing
-// slab's front face ends at its tread). Its top is then no nosing: a riser's upper part merged with
-// its nosing's slab is tilted, no riser's plane, and the lower part's top made a 9 cm "rise" and a
-// false step (a robot's Kinect v1 under 3 cm nosings).
+// it, starting no more than a level's tolerance (same_level_m: the cells between two segments are
+// often neither's) above the riser's top and reaching beyond it (a nosing slab's front face ends at
+// its tread). Its top is then no nosing: a riser's upper part merged with its nosing's slab is
+// tilted, no riser's plane, and the lower part's top made a 9 cm "rise" and a false step (robots'
+// Kinect v1 and v2 under 3 cm nosings).
 bool face_goes_on_above(const PlaneSet& ps, size_t i, const StairConfig& cfg) {
   const PlaneExtent& e = ps.extents[i];
   const Eigen::Vector3f& n = ps.planes[i].normal;
@@ -21,7 +22,7 @@ bool face_goes_on_above(const PlaneSet& ps, size_t i, const StairConfig& cfg) {
     if (j == i || ps.planes[j].kind == PlaneKind::Tread || ps.planes[j].normal.dot(n) < std::sqrt(0.5f)) continue;
     if (std::abs(f.s_mean - e.s_mean) > cfg.riser_at_nosing_m) continue;
     if (std::min(f.t_max, e.t_max) <= std::max(f.t_min, e.t_min)) continue;
-    if (f.z_min < e.z_max && f.z_max > e.z_max + cfg.same_level_m) return true;
+    if (f.z_min < e.z_max + cfg.same_level_m && f.z_max > e.z_max + cfg.same_level_m) return true;
   }
   return false;
 }

@@ -295,7 +295,8 @@ TEST(PerceptionSteps, SingleCurbIsNoStaircase) {
 // A robot's camera below 3 cm nosings: a riser's upper part, merged with its nosing's slab, is
 // fitted tilted (no riser's plane) and reaches up to the image's top; its lower part is a riser of its
 // own, 4.5 cm tall. That part's top is no nosing: the face goes on above it (a 9 cm "rise" and a false
-// step before). Without the upper part in view, the lower part's top stands for a level as before.
+// step before; a Kinect v2 robot's ascent, 3 false frames). Without the upper part in view, the lower
+// part's top stands for a level as before.
 TEST(PerceptionSteps, ARisersTopIsNoLevelWhereItsFaceGoesOnAbove) {
   PlaneSet ps;
   const Eigen::Vector3f facing(-1.0f, 0.0f, 0.0f);
@@ -324,6 +325,14 @@ TEST(PerceptionSteps, ARisersTopIsNoLevelWhereItsFaceGoesOnAbove) {
   const std::vector<float> with_upper = tops();
   ASSERT_EQ(with_upper.size(), 3u);
   EXPECT_NEAR(with_upper[2], -0.09f, 1e-5);
+  // The cells between the two segments are often neither's: the upper part starting 2 cm above the
+  // lower part's top (within a level's tolerance) goes on from it all the same.
+  ps.extents.back().z_min = -0.025f;
+  EXPECT_EQ(tops().size(), 3u);
+  // A face that starts a level above the riser's top is the next step's, not this one's.
+  ps.extents.back().z_min = -0.045f + cfg.same_level_m + 0.01f;
+  EXPECT_EQ(tops().size(), 4u);
+  ps.extents.back().z_min = -0.09f;
   // A side wall beside the riser, reaching higher, is no face of it.
   ps.planes.back().normal = Eigen::Vector3f::UnitY();
   EXPECT_EQ(tops().size(), 4u);
