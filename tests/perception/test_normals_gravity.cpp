@@ -152,6 +152,19 @@ Segment fitted_segment_at(double pitch_deg, const Eigen::Vector3d& world_normal,
   return s;
 }
 
+// A level plane seen from a camera at pitch_deg, its fit tilted tilt_deg in pitch, its spread along_m
+// (standard deviation) along the levelled view and across_m across it: how well it knows its tilt along
+// the view is what a flight's pitch depends on.
+Segment tread_along_view(double pitch_deg, double tilt_deg, size_t cells, double along_m, double across_m, float rms_m,
+                         float depth_m) {
+  const Eigen::Vector3d tilted = Eigen::AngleAxisd(tilt_deg * M_PI / 180, Eigen::Vector3d::UnitY()) * Eigen::Vector3d::UnitZ();
+  Segment s = fitted_segment_at(pitch_deg, tilted, cells, along_m, across_m, rms_m, depth_m);
+  const Eigen::Vector3f forward = (test::optical_to_world(pitch_deg, 0).transpose() * Eigen::Vector3d::UnitX()).cast<float>();
+  s.axis[0] = (forward - forward.dot(s.normal) * s.normal).normalized();
+  s.axis[1] = s.normal.cross(s.axis[0]).normalized();
+  return s;
+}
+
 Eigen::Vector3f true_up(double pitch_deg) {
   return (test::optical_to_world(pitch_deg, 0).transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
 }
@@ -289,12 +302,8 @@ TEST(PerceptionGravity, FarSliversBesideParallelWallsDoNotSetPitch) {
 // gravity.carry_max_s at most, then the pose is unknown).
 TEST(PerceptionGravity, AFarTreadMeasuresPitchOnlyToTheDepthResolutionAcrossIt) {
   const double pitch = -7.7;
-  const Eigen::Vector3d tilted = Eigen::AngleAxisd(2.2 * M_PI / 180, Eigen::Vector3d::UnitY()) * Eigen::Vector3d::UnitZ();
   // The tread: 9 cm (standard deviation) along the view, 38 cm across it; the side walls.
-  Segment tread = fitted_segment_at(pitch, tilted, 227, 0.089, 0.377, 0.0063f, 4.34f);
-  const Eigen::Vector3f forward = (test::optical_to_world(pitch, 0).transpose() * Eigen::Vector3d::UnitX()).cast<float>();
-  tread.axis[0] = (forward - forward.dot(tread.normal) * tread.normal).normalized();
-  tread.axis[1] = tread.normal.cross(tread.axis[0]).normalized();
+  const Segment tread = tread_along_view(pitch, 2.2, 227, 0.089, 0.377, 0.0063f, 4.34f);
   const std::vector<Segment> segs = {fitted_segment_at(pitch, Eigen::Vector3d::UnitY(), 5811, 0.59, 0.85, 0.0031f, 3.3f),
                                      fitted_segment_at(pitch, -Eigen::Vector3d::UnitY(), 2370, 0.53, 0.57, 0.0011f, 2.1f),
                                      tread};
@@ -310,11 +319,7 @@ TEST(PerceptionGravity, AFarTreadMeasuresPitchOnlyToTheDepthResolutionAcrossIt) 
 // the strip's, and the flight's first three frames measured every rise 1.5 cm short.
 TEST(PerceptionGravity, ACarriedPitchIsThePriorsNotTheStripsThatCouldNotMeasureIt) {
   const double pitch = -10.0;
-  const Eigen::Vector3d tilted = Eigen::AngleAxisd(3.0 * M_PI / 180, Eigen::Vector3d::UnitY()) * Eigen::Vector3d::UnitZ();
-  Segment strip = fitted_segment_at(pitch, tilted, 285, 0.014, 0.38, 0.0015f, 1.41f);
-  const Eigen::Vector3f forward = (test::optical_to_world(pitch, 0).transpose() * Eigen::Vector3d::UnitX()).cast<float>();
-  strip.axis[0] = (forward - forward.dot(strip.normal) * strip.normal).normalized();
-  strip.axis[1] = strip.normal.cross(strip.axis[0]).normalized();
+  const Segment strip = tread_along_view(pitch, 3.0, 285, 0.014, 0.38, 0.0015f, 1.41f);
   const std::vector<Segment> segs = {fitted_segment_at(pitch, Eigen::Vector3d::UnitY(), 7427, 0.79, 0.83, 0.0011f, 2.5f),
                                      fitted_segment_at(pitch, -Eigen::Vector3d::UnitY(), 4207, 0.49, 1.12, 0.0010f, 3.5f),
                                      strip};
