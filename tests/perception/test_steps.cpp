@@ -255,9 +255,42 @@ TEST(PerceptionSteps, ANosingsSlabIsNoRiser) {
   ASSERT_EQ(steps.size(), 3u);
   for (size_t k = 0; k < steps.size(); ++k) {
     EXPECT_NEAR(ps.axial(steps[k].nosing_m), kFirstFace + kTread * k, 1e-4) << "step " << k;
-    if (k + 1 < steps.size())
+    if (k + 1 < steps.size()) {
       EXPECT_NEAR(ps.axial(steps[k + 1].nosing_m) - ps.axial(steps[k].nosing_m), kTread, 1e-4) << "step " << k;
+    }
   }
+}
+
+// Far up a flight each level loses its cells at both corners of a step (a
+// D435 at 2.5 m: the tread above started 5-9 cm behind the riser's face). The
+// face lies between where the level below stops and where the tread above
+// starts: it is searched for there, and without a segmented riser the band's
+// middle is the nosing, not the tread's trimmed front.
+TEST(PerceptionSteps, ARisersFaceLiesBetweenTheLevelBelowAndTheTreadAbove) {
+  constexpr float kFace = 1.25f, kTread = 0.25f;
+  const StairConfig cfg;
+  PlaneSet ps = three_levels(0.3f, 1.0f, -1.0f);  // faces at 1.0 and 1.25
+  ps.extents[1].s_max = kFace - 0.05f;             // the level below stops 5 cm short
+  ps.extents[2].s_min = kFace + 0.08f;             // the tread above starts 8 cm behind
+  ASSERT_LT(0.08f, cfg.riser_at_nosing_m);
+  const auto second_nosing = [&] {
+    const StairChain chain = best_chain(tread_levels(ps, {}, cfg), cfg);
+    EXPECT_EQ(chain.direction, Direction::Up);
+    const std::vector<Step> steps = steps_from_chain(ps, chain, cfg);
+    EXPECT_EQ(steps.size(), 2u);
+    return steps.size() == 2 ? ps.axial(steps[1].nosing_m) - ps.axial(steps[0].nosing_m) : 0.0f;
+  };
+  EXPECT_NEAR(second_nosing(), kTread, 1e-4) << "the segmented face within riser_at_nosing_m";
+  // The tread above starts farther behind than riser_at_nosing_m: the face is still in the band.
+  ps.extents[2].s_min = kFace + 1.2f * cfg.riser_at_nosing_m;
+  EXPECT_NEAR(second_nosing(), kTread, 1e-4) << "the segmented face in the band";
+  // No riser segmented there: the band's middle, 1.5 cm off for unequal losses (the tread's front: 8 cm).
+  ps.extents[2].s_min = kFace + 0.08f;
+  ps.planes[4].kind = PlaneKind::Other;
+  EXPECT_NEAR(second_nosing(), kTread + 0.015f, 1e-4);
+  // A floor wider than the flight runs on beside it: no band, the tread's front.
+  ps.extents[1].s_max = kFace + 0.3f;
+  EXPECT_NEAR(second_nosing(), kTread + 0.08f, 1e-4);
 }
 
 TEST(PerceptionSteps, ARiserCutByMissingDepthIsNoFootInView) {
@@ -281,7 +314,9 @@ TEST(PerceptionSteps, ARiserCutByMissingDepthIsNoFootInView) {
   const Step& first = o.steps.front();
   ASSERT_TRUE(first.riser_height_m.has_value());
   EXPECT_NEAR(first.nosing_m.z(), -kHeight + kRise, 0.01);
-  if (!(first.inferred & kStepRiserInferred)) EXPECT_NEAR(*first.riser_height_m, kRise, 0.01);
+  if (!(first.inferred & kStepRiserInferred)) {
+    EXPECT_NEAR(*first.riser_height_m, kRise, 0.01);
+  }
 }
 
 TEST(PerceptionSteps, SingleCurbIsNoStaircase) {
