@@ -193,8 +193,9 @@ struct ConcaveCornersConfig {
 struct GravityConfig {
   float max_tilt_from_image_up_deg = 80.0f;  // deg; horizontal-plane candidates vs. image up
   float parallel_deg = 4.0f;                 // deg; normals this close count as parallel
-  float prior_max_deg = 20.0f;               // deg; up may turn this much from the previous frame's
-  double prior_max_gap_s = 1.0;              // s; after a longer gap the previous up is forgotten
+  float prior_max_deg = 20.0f;               // deg; up may turn this much from the previous frame's (more
+                                             // by sway_deg_per_s where that up is older: no plane measured it)
+  double prior_max_gap_s = 1.0;              // s; after a longer gap between frames the previous up is forgotten
   double carry_max_s = 0.3;                  // s; a pitch no plane measures (walls along the view, no
                                              // tread) is the last measured one this long at most: a hand-
                                              // held camera sways ~5 deg/s, 1.5 deg (consensus_deg) in 0.3 s

@@ -80,14 +80,22 @@ Observation Pipeline::process(const DepthImage& frame) {
   clock.mark("region_growing");
   fit_away_from_concave_corners(grid_, cfg_.concave_corners, segments, corners_);
   clock.mark("concave_corners");
-  const int64_t gap_us = frame.utime - prior_utime_;
-  if (gap_us < 0 || gap_us > cfg_.gravity.prior_max_gap_s * 1e6) up_prior_.reset();
-  bool carried = false;
+  // The previous up is forgotten after a gap between frames (the camera may have been moved
+  // anywhere meanwhile), not while frames keep coming whose planes do not measure it: it then bounds
+  // the turn, as far as the camera may have swayed since (a level Kinect v2 descent's pitch, unmeasured
+  // for a second, was then set 33 deg off by a strip of treads at the image's bottom edge).
+  const int64_t frame_gap_us = frame.utime - last_utime_;
+  last_utime_ = frame.utime;
+  if (frame_gap_us < 0 || frame_gap_us > cfg_.gravity.prior_max_gap_s * 1e6) up_prior_.reset();
   // The prior's pitch is known to the sway since it was measured (a frame's worth at least).
   const double since_measured_s = std::max(1e-6 * static_cast<double>(frame.utime - measured_utime_), 0.0);
-  const double prior_sigma_rad = cfg_.gravity.sway_deg_per_s * M_PI / 180.0 * since_measured_s;
+  GravityConfig gravity = cfg_.gravity;
+  gravity.prior_max_deg =
+      static_cast<float>(std::max<double>(gravity.prior_max_deg, gravity.sway_deg_per_s * since_measured_s));
+  bool carried = false;
+  const double prior_sigma_rad = gravity.sway_deg_per_s * M_PI / 180.0 * since_measured_s;
   std::optional<Eigen::Vector3f> planes_up = estimate_up(
-      segments, cfg_.gravity, up_prior_, &carried,
+      segments, gravity, up_prior_, &carried,
       prior_sigma_rad > 0.0 ? 1.0 / (prior_sigma_rad * prior_sigma_rad) : std::numeric_limits<double>::infinity());
   // A pitch no plane measures is carried from the last frame that measured it,
   // for a while only: the camera turns meanwhile.
@@ -96,7 +104,6 @@ Observation Pipeline::process(const DepthImage& frame) {
   if (carried_too_long) planes_up.reset();
   if (planes_up) {
     up_prior_ = planes_up;
-    prior_utime_ = frame.utime;
     if (!carried) measured_utime_ = frame.utime;
   }
   const FusedUp fused = fuse_up(planes_up, imu_.up_at(frame.utime), cfg_.imu);

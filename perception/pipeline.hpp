@@ -18,8 +18,8 @@ class Pipeline {
   explicit Pipeline(PerceptionConfig cfg = {});
   // Never throws on bad input: an unusable frame gives camera.valid = false,
   // direction None and a status naming the reason. Frames of one stream come
-  // in order: the previous frame's up (within gravity_prior_max_gap_s) is the
-  // gravity prior.
+  // in order: the last up (unless gravity.prior_max_gap_s passed between two
+  // frames) is the gravity prior.
   Observation process(const DepthImage& frame);
   const PerceptionConfig& config() const { return cfg_; }
   // Optional IMU samples in the camera optical frame (imu_to_camera applied),
@@ -33,8 +33,8 @@ class Pipeline {
   NormalGrid grid_;          // reused buffers
   std::vector<int> labels_;  // reused buffers
   ConcaveCornersScratch corners_;  // reused buffers
-  std::optional<Eigen::Vector3f> up_prior_;  // optical frame, of the frame at prior_utime_
-  int64_t prior_utime_ = 0;
+  std::optional<Eigen::Vector3f> up_prior_;  // optical frame: the last frame's up that had one
+  int64_t last_utime_ = 0;      // the previous usable frame's
   int64_t measured_utime_ = 0;  // the last frame whose planes measured its pitch (none carried)
   ImuGravity imu_;
 };

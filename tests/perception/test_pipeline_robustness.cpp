@@ -130,5 +130,40 @@ TEST(PipelineGravity, APitchNoPlaneMeasuresIsCarriedOnlyForAWhile) {
   EXPECT_NEAR(o.camera.pitch_deg, -17.5, 0.3);
 }
 
+// While frames keep coming whose planes do not measure the pitch, the last
+// measured up still bounds how far it may have turned (gravity.prior_max_deg,
+// or as far as the camera may have swayed since): a level plane 33 deg off
+// half a second later is no floor's (a strip of treads at a level Kinect v2's
+// image edge set the pitch so). Only a gap between frames forgets it.
+TEST(PipelineGravity, AnUnmeasuredPitchStillBoundsTheTurnUntilAGapBetweenFrames) {
+  const auto frame = [](double t_s, double pitch_deg, bool floor) {
+    DepthImage f = test::render_corridor(320, 240, pitch_deg, 1.2, 0.6, floor);
+    f.utime = static_cast<int64_t>(t_s * 1e6);
+    return f;
+  };
+  const GravityConfig g;
+  constexpr double kTurnDeg = 33.0, kWrongAt_s = 1.5;
+  ASSERT_GT(kTurnDeg, std::max(static_cast<double>(g.prior_max_deg), g.sway_deg_per_s * kWrongAt_s));
+  ASSERT_GT(kWrongAt_s, g.prior_max_gap_s + g.carry_max_s);  // it was forgotten here
+  Pipeline p;
+  ASSERT_TRUE(p.process(frame(0.0, -12.0, true)).camera.valid);
+  double t = 0.1;
+  for (; t < kWrongAt_s - 1e-9; t += 0.1) p.process(frame(t, -12.0, false));  // walls only
+  Observation o = p.process(frame(t, -12.0 - kTurnDeg, true));
+  EXPECT_FALSE(o.camera.valid) << "pitch " << o.camera.pitch_deg << " at " << t << " s";
+  // Frames keep coming: once the camera may have swayed that far, the plane sets up again.
+  const double sway_s = kTurnDeg / g.sway_deg_per_s + 0.2;
+  for (t += 0.1; t < sway_s; t += 0.1) p.process(frame(t, -12.0, false));
+  o = p.process(frame(t, -12.0 - kTurnDeg, true));
+  ASSERT_TRUE(o.camera.valid) << o.status << " at " << t << " s";
+  EXPECT_NEAR(o.camera.pitch_deg, -12.0 - kTurnDeg, 0.3);
+  // After a gap between frames the last up is forgotten: the next frame's floor sets it at once.
+  Pipeline q;
+  ASSERT_TRUE(q.process(frame(0.0, -12.0, true)).camera.valid);
+  o = q.process(frame(g.prior_max_gap_s + 0.1, -12.0 - kTurnDeg, true));
+  ASSERT_TRUE(o.camera.valid) << o.status;
+  EXPECT_NEAR(o.camera.pitch_deg, -12.0 - kTurnDeg, 0.3);
+}
+
 }  // namespace
 }  // namespace stairs
