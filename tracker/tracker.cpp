@@ -159,12 +159,16 @@ double Tracker::prior_x_uncertainty_m(int64_t utime, bool with_odometry) const {
 // flight) gave it one: it turned on 3 degrees a frame, the right axes fell outside the jump around
 // it, and the camera was placed 24 cm off with nothing to stop it. Else the prior's yaw.
 double Tracker::observed_yaw(double axis_rad, double prior_yaw_rad) const {
-  const double max_jump = config_.motion.max_yaw_jump_deg * M_PI / 180.0;
-  for (const double around : {prior_yaw_rad, (placed_ ? *placed_ : accepted_.back()).pose.yaw_rad}) {
-    const double yaw = yaw_from_axis(axis_rad, around);
-    if (std::abs(wrap_angle(yaw - around)) <= max_jump) return yaw;
-  }
+  for (const double around : {prior_yaw_rad, (placed_ ? *placed_ : accepted_.back()).pose.yaw_rad})
+    if (yaw_off_within_jump(axis_rad, around)) return yaw_from_axis(axis_rad, around);
   return prior_yaw_rad;
+}
+
+// How far the yaw an axis gives near `around` lies from it, where motion.max_yaw_jump_deg allows.
+std::optional<double> Tracker::yaw_off_within_jump(double axis_rad, double around_rad) const {
+  const double off = wrap_angle(yaw_from_axis(axis_rad, around_rad) - around_rad);
+  if (std::abs(off) > config_.motion.max_yaw_jump_deg * M_PI / 180.0) return std::nullopt;
+  return off;
 }
 
 // The yaw the riser planes in view give (a frame without steps: a flight's last risers, the wall
@@ -173,13 +177,12 @@ double Tracker::observed_yaw(double axis_rad, double prior_yaw_rad) const {
 // turned the far steps away from the camera; a side wall seen while turning on a landing is no
 // riser (it is 90 degrees off the prior, which odometry or the last placements give).
 double Tracker::yaw_of_risers_in_view(const Observation& obs, double prior_yaw_rad) const {
-  const double max_jump = config_.motion.max_yaw_jump_deg * M_PI / 180.0;
   double sum = 0.0, weight = 0.0;
   for (const Plane& p : obs.planes) {
     if (p.kind != PlaneKind::Riser || std::hypot(p.normal.x(), p.normal.y()) < 0.5) continue;
-    const double off = wrap_angle(yaw_from_axis(std::atan2(p.normal.y(), p.normal.x()), prior_yaw_rad) - prior_yaw_rad);
-    if (std::abs(off) > max_jump) continue;
-    sum += p.length_m * off;
+    const auto off = yaw_off_within_jump(std::atan2(p.normal.y(), p.normal.x()), prior_yaw_rad);
+    if (!off) continue;
+    sum += p.length_m * *off;
     weight += p.length_m;
   }
   return weight > 0.0 ? wrap_angle(prior_yaw_rad + sum / weight) : prior_yaw_rad;

@@ -57,6 +57,7 @@ class Tracker {
   std::optional<Registration> on_planes_in_view(const Observation& obs, const Pose4& prior) const;
   Pose4 predict(int64_t utime, const Eigen::Vector3d& to_base_m) const;
   double observed_yaw(double axis_rad, double prior_yaw_rad) const;
+  std::optional<double> yaw_off_within_jump(double axis_rad, double around_rad) const;
   double yaw_of_risers_in_view(const Observation& obs, double prior_yaw_rad) const;
   Eigen::Vector3d to_base_m(const Observation& obs) const;
   bool odometry_covers(int64_t utime) const;
