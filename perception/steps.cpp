@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace stairs {
 
@@ -110,6 +111,8 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
   // Up: step k is the riser below level k and level k's tread (k >= 1).
   // Down: step k is level k's tread and the riser below it (k < n - 1).
   const size_t first = up ? 1 : 0, last = up ? L.size() : L.size() - 1;
+  std::vector<float> nosing_s;                  // along the stair, per step
+  std::vector<std::optional<float>> band_mid;  // going up: the middle of the band the face lies in
   for (size_t k = first; k < last && L.size() >= 2; ++k) {
     const Level& tread = L[k];
     const Level& below = up ? L[k - 1] : L[k + 1];
@@ -124,15 +127,13 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
     if (tread.riser_top || below.riser_top) s.inferred |= kStepRiserInferred;
     // Going down the nosing is the depth jump at the tread's far end where one
     // shows it: the plane's trimmed extent stops short of the edge's cells.
-    float nosing_s = up ? tread.s_min : tread.far_edge ? tread.edge_s : tread.s_max;
-    // Going up, the riser's face lies between where the level below stops and
-    // where this tread starts: neither level reaches into the step, and each
-    // loses its cells at the corner (to noise, or to a riser fitted tilted
-    // that takes them). The face is searched for there too, and without one the
-    // middle of that band is the estimate: the tread's front alone lay 5-10 cm
-    // behind the face at 2.5-3.6 m (a D435's and a Kinect v2's far treads
-    // measured 30-39 cm for 25-29).
-    const bool band = up && below.plane >= 0 && !below.riser_top && !tread.riser_top && below.s_max < tread.s_min;
+    float at = up ? tread.s_min : tread.far_edge ? tread.edge_s : tread.s_max;
+    // Going up, the riser's face lies by where the level below stops and this
+    // tread starts: neither level reaches into the step (within riser_contact_m
+    // of noise), and each loses its cells at the corner (to noise, or to a riser
+    // fitted tilted that takes them). The face is searched for there too.
+    const bool band = up && below.plane >= 0 && !below.riser_top && !tread.riser_top &&
+                      below.s_max < tread.s_min + cfg.riser_contact_m;
     // The riser whose face lies at the nosing line, spanning the rise; of
     // several, the one reaching lowest: a riser stands on the level below, and
     // under a nosing overhang the slab's front face, a few cm tall at the
@@ -140,16 +141,34 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
     // that step's nosing at the slab and the next one's at a riser's face: a
     // hand-held Kinect v1 ascent's treads 0.20-0.25 m for 0.222).
     s.riser_plane = find_riser(
-        ps, std::min(nosing_s - cfg.riser_at_nosing_m, band ? below.s_max : nosing_s), nosing_s + cfg.riser_at_nosing_m,
+        ps, std::min(at - cfg.riser_at_nosing_m, band ? below.s_max : at), at + cfg.riser_at_nosing_m,
         [&](const PlaneExtent& e) { return e.z_max >= below.z && e.z_min <= tread.z; },
         [](const PlaneExtent& a, const PlaneExtent& b) { return a.z_min < b.z_min; });
     // The riser's face is the better estimate: the tread's edge cells are lost at the corner.
-    if (s.riser_plane >= 0) nosing_s = ps.extents[s.riser_plane].s_mean;
-    else if (band) nosing_s = 0.5f * (below.s_max + tread.s_min);
-    s.nosing_m = ps.to_camera(nosing_s, 0.5f * (tread.t_min + tread.t_max), tread.z).cast<double>();
+    if (s.riser_plane >= 0) at = ps.extents[s.riser_plane].s_mean;
+    nosing_s.push_back(at);
+    band_mid.push_back(band ? std::optional<float>(0.5f * (below.s_max + tread.s_min)) : std::nullopt);
     s.tread_depth_m = tread.s_max - tread.s_min;
     s.width_m = tread.t_max - tread.t_min;
     steps.push_back(s);
+  }
+  // A step whose face no riser shows has it where the faces that are shown stand from their bands'
+  // middles: about there where no overhang hides the level below (the tread's front alone lay 5-10 cm
+  // behind the face at 2.5-3.6 m: a D435's and a Kinect v2's far treads measured 30-39 cm for 25-29),
+  // an overhang's depth behind it where the slab hides the level below to its front (the slab's front
+  // on some steps and the faces on others made a Kinect v2's treads 26-30 cm for 28).
+  std::vector<float> offsets;
+  for (size_t i = 0; i < steps.size(); ++i)
+    if (steps[i].riser_plane >= 0 && band_mid[i]) offsets.push_back(nosing_s[i] - *band_mid[i]);
+  float offset = 0.0f;
+  if (!offsets.empty()) {
+    std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
+    offset = offsets[offsets.size() / 2];
+  }
+  for (size_t i = 0; i < steps.size(); ++i) {
+    if (steps[i].riser_plane < 0 && band_mid[i]) nosing_s[i] = *band_mid[i] + offset;
+    const Level& tread = L[first + i];
+    steps[i].nosing_m = ps.to_camera(nosing_s[i], 0.5f * (tread.t_min + tread.t_max), tread.z).cast<double>();
   }
   return steps;
 }

@@ -293,6 +293,32 @@ TEST(PerceptionSteps, ARisersFaceLiesBetweenTheLevelBelowAndTheTreadAbove) {
   EXPECT_NEAR(second_nosing(), kTread + 0.08f, 1e-4);
 }
 
+// Looking steeply down an ascent with 3 cm nosing overhangs, each slab hides
+// the level below up to its front: both levels end at the slab's front, and a
+// face no riser shows lies an overhang behind that band. It stands where the
+// faces that are shown stand from their bands: the slab's front on some steps
+// and the faces on others made a Kinect v2's treads 26-30 cm for 28.
+TEST(PerceptionSteps, AnUnseenFaceStandsWhereTheSeenOnesStandFromTheirBands) {
+  constexpr float kRise = 0.17f, kTread = 0.28f, kOverhang = 0.03f, kFloor = -0.8f, kFirstFace = 0.6f;
+  const StairConfig cfg;
+  PlaneSet ps;
+  add_plane(ps, PlaneKind::Tread, {0.1f, kFirstFace - kOverhang, -0.5f, 0.5f, kFloor, kFloor, 0.35f, kFloor});
+  for (int k = 0; k < 3; ++k) {
+    const float face = kFirstFace + kTread * k, below = kFloor + kRise * k, top = below + kRise;
+    // The tread from its slab's front (1 cm of cells lost) to where the next slab hides it.
+    add_plane(ps, PlaneKind::Tread, {face - kOverhang + 0.01f, face + kTread - kOverhang, -0.5f, 0.5f, top, top,
+                                     face + 0.5f * kTread, top});
+    if (k != 1)  // the second riser's face is not segmented
+      add_plane(ps, PlaneKind::Riser, {face, face, -0.5f, 0.5f, below + 0.01f, top - 0.06f, face, below + 0.05f});
+  }
+  const StairChain chain = best_chain(tread_levels(ps, {}, cfg), cfg);
+  ASSERT_EQ(chain.direction, Direction::Up);
+  const std::vector<Step> steps = steps_from_chain(ps, chain, cfg);
+  ASSERT_EQ(steps.size(), 3u);
+  for (size_t k = 0; k < steps.size(); ++k)
+    EXPECT_NEAR(ps.axial(steps[k].nosing_m), kFirstFace + kTread * k, 0.006) << "step " << k;
+}
+
 TEST(PerceptionSteps, ARiserCutByMissingDepthIsNoFootInView) {
   // A robot's time-of-flight camera reads nothing nearer than 0.5 m: the lower
   // part of the first riser and the floor before it are missing, though not at
