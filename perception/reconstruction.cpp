@@ -1,5 +1,6 @@
 #include "perception/reconstruction.hpp"
 
+#include "common/median.hpp"
 #include "perception/grammar.hpp"
 
 #include <algorithm>
@@ -36,8 +37,7 @@ int level_at_foot(const PlaneSet& ps, const PlaneExtent& riser, float contact_m)
 double median_rise(const std::vector<Step>& steps) {
   std::vector<double> rises;
   for (const Step& s : steps) rises.push_back(*s.riser_height_m);
-  std::nth_element(rises.begin(), rises.begin() + rises.size() / 2, rises.end());
-  return rises[rises.size() / 2];
+  return median(rises);
 }
 
 // Going up, the chain's first level is a step too when a riser rises to its

@@ -1,5 +1,7 @@
 #include "perception/steps.hpp"
 
+#include "common/median.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -160,11 +162,7 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
   std::vector<float> offsets;
   for (size_t i = 0; i < steps.size(); ++i)
     if (steps[i].riser_plane >= 0 && band_mid[i]) offsets.push_back(nosing_s[i] - *band_mid[i]);
-  float offset = 0.0f;
-  if (!offsets.empty()) {
-    std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
-    offset = offsets[offsets.size() / 2];
-  }
+  const float offset = offsets.empty() ? 0.0f : median(offsets);
   for (size_t i = 0; i < steps.size(); ++i) {
     if (steps[i].riser_plane < 0 && band_mid[i]) nosing_s[i] = *band_mid[i] + offset;
     const Level& tread = L[first + i];

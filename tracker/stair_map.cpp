@@ -7,11 +7,6 @@
 
 namespace stairs {
 
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 double typical_riser_m(const StairMap& map, const StairPriorConfig& c) {
   std::vector<double> r;
   for (const auto& s : map.steps)

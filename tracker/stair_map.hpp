@@ -3,6 +3,8 @@
 // published StairModel is W shifted to the model's own first riser.
 #pragma once
 
+#include "common/median.hpp"
+
 #include <Eigen/Core>
 
 #include <vector>
@@ -61,9 +63,6 @@ struct StairMap {
   bool end_wall_confirmed = false;
   bool empty() const { return steps.empty(); }
 };
-
-// The median of a non-empty set (the upper one of an even count).
-double median(std::vector<double> v);
 
 // Typical riser height and tread depth of the model (medians of adjacent
 // steps), or the configured defaults while the model is too small.
