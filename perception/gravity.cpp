@@ -114,6 +114,20 @@ Eigen::Vector3f refine(const std::vector<Segment>& segments, const Eigen::Vector
   return fit_up(segments, fit_up(segments, up, cfg.refine_first_deg, cfg), cfg.consensus_deg, cfg);
 }
 
+// How much the planes agree with `u`: the information (how well each knows its normal) of the
+// segments parallel or perpendicular to it within cfg.consensus_deg.
+double agreement(const std::vector<Segment>& segments, const Eigen::Vector3f& u, const GravityConfig& cfg) {
+  const float sin_agree = std::sin(cfg.consensus_deg * static_cast<float>(M_PI) / 180.0f);
+  const float cos_agree = std::sqrt(1.0f - sin_agree * sin_agree);
+  double sc = 0.0;
+  for (const Segment& s : segments) {
+    if (s.bent) continue;
+    const float c = std::abs(s.normal.dot(u));
+    if (c >= cos_agree || c <= sin_agree) sc += information(s, cfg);
+  }
+  return sc;
+}
+
 // Up as most planes agree on it: horizontal segments parallel to it, vertical
 // ones (risers, walls) perpendicular. Each candidate (the family's mean and
 // the segments `candidate` accepts) is scored by the cells of the segments
@@ -127,15 +141,7 @@ Eigen::Vector3f consensus_up(const std::vector<Segment>& segments, const Eigen::
                              const GravityConfig& cfg, Candidate candidate) {
   const float sin_agree = std::sin(cfg.consensus_deg * static_cast<float>(M_PI) / 180.0f);
   const float cos_agree = std::sqrt(1.0f - sin_agree * sin_agree);
-  auto score = [&](const Eigen::Vector3f& u) {
-    double sc = 0.0;
-    for (const Segment& s : segments) {
-      if (s.bent) continue;
-      const float c = std::abs(s.normal.dot(u));
-      if (c >= cos_agree || c <= sin_agree) sc += information(s, cfg);
-    }
-    return sc;
-  };
+  auto score = [&](const Eigen::Vector3f& u) { return agreement(segments, u, cfg); };
   Eigen::Vector3f best = family_up;
   double best_score = score(family_up);
   // A candidate wins only by a margin that knows up to within consensus_deg:
@@ -197,24 +203,37 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   const float sin_prior = std::sin(cfg.prior_max_deg * deg);
   auto vertical = [&](const Eigen::Vector3f& n) { return std::abs(n.dot(*prior)) < sin_prior; };
   const auto v1 = best_family(segments, cos_par, vertical);
-  if (horizontal && (!v1 || horizontal->support >= cfg.min_support_fraction * v1->support))
-    return consensus_up(segments, horizontal->normal, cfg, near_up);
-  if (!v1) return std::nullopt;
-  const float cos_distinct = std::cos(cfg.second_family_min_angle_deg * deg);
-  const auto v2 = best_family(segments, cos_par, [&](const Eigen::Vector3f& n) {
-    return vertical(n) && std::abs(n.dot(v1->normal)) < cos_distinct;
-  });
-  Eigen::Vector3f up = v2 ? v1->normal.cross(v2->normal) : *prior - prior->dot(v1->normal) * v1->normal;
-  if (up.dot(*prior) < 0) up = -up;
-  up.normalize();
-  if (up.dot(*prior) < cos_prior) return std::nullopt;
+  std::optional<Eigen::Vector3f> vertical_up;  // perpendicular to the vertical families, else nothing
+  bool two_families = false;                    // a second one: up is their cross product
+  if (v1) {
+    const float cos_distinct = std::cos(cfg.second_family_min_angle_deg * deg);
+    const auto v2 = best_family(segments, cos_par, [&](const Eigen::Vector3f& n) {
+      return vertical(n) && std::abs(n.dot(v1->normal)) < cos_distinct;
+    });
+    two_families = v2.has_value();
+    Eigen::Vector3f u = v2 ? v1->normal.cross(v2->normal) : *prior - prior->dot(v1->normal) * v1->normal;
+    if (u.dot(*prior) < 0) u = -u;
+    u.normalize();
+    if (u.dot(*prior) >= cos_prior) vertical_up = u;
+  }
+  // The treads propose where they are large enough beside the walls and risers, unless those
+  // agree with an up of their own by more than the treads' (a floor strip inside a time-of-flight
+  // camera's multipath band, bent as a whole 8 degrees, set the pitch against every riser in view).
+  if (horizontal && (!v1 || horizontal->support >= cfg.min_support_fraction * v1->support)) {
+    const Eigen::Vector3f h = consensus_up(segments, horizontal->normal, cfg, near_up);
+    if (!vertical_up ||
+        agreement(segments, *vertical_up, cfg) <= agreement(segments, h, cfg) + consensus_information(cfg))
+      return h;
+  }
+  if (!vertical_up) return std::nullopt;
+  const Eigen::Vector3f up = *vertical_up;
   // Walls and risers propose; a tread too small to outweigh them may still be
   // the up more planes agree with (risers' normals are bent at both of their
   // edges, and a wall says nothing of pitch along it), and treads then fit it
   // where they agree (a level camera's far treads and floor: walls and risers,
   // noisy at 3 m, set it off by a degree or two).
   const Eigen::Vector3f fitted = consensus_up(segments, up, cfg, near_up);
-  if (v2) return fitted;
+  if (two_families) return fitted;
   // One vertical family fixes up only across its planes; along them up is the
   // previous frame's unless this frame's treads measure it: carried. Only a
   // pitch counts (the tilt along the view, where a flight is measured): an

@@ -362,4 +362,28 @@ TEST(PerceptionGravity, ABentTreadIsOutvotedByThePlanesThatAgree) {
   EXPECT_LT(averaged->dot(true_up(-2.4)), std::cos(1.0 * M_PI / 180));
 }
 
+// A robot at -20 deg before a flight of dark treads, on a time-of-flight camera: the treads return
+// too little to segment, the risers and the side walls are large, and the floor's strip between the
+// camera's minimum range and the first riser lies wholly in the multipath band of that corner, bent
+// 7.7 deg as a whole and fitted well (it is flat, only tilted). It is the one tread family and large
+// enough beside the risers to propose, but every riser and wall disagrees with it: up is theirs.
+TEST(PerceptionGravity, AStripEveryRiserAndWallDisagreesWithDoesNotSetUp) {
+  const double pitch = -20.0;
+  auto segment = [&](const Eigen::Vector3d& world_normal, size_t cells, double spread0_m, double spread1_m,
+                     float rms_m) { return fitted_segment(pitch, world_normal, cells, spread0_m, spread1_m, rms_m); };
+  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
+  std::vector<Segment> segs = {segment(-Y, 270, 0.05, 0.1, 0.002f), segment(Y, 180, 0.05, 0.1, 0.0015f)};
+  for (size_t cells : {1480, 3930, 4800, 5440}) segs.push_back(segment(-X, cells, 0.05, 0.29, 0.002f));
+  const Eigen::Vector3d bent = Eigen::AngleAxisd(7.7 * M_PI / 180, Y) * Z;
+  segs.push_back(segment(bent, 1680, 0.03, 0.29, 0.0006f));
+  const auto up = estimate_up(segs, GravityConfig{}, true_up(pitch - 1.0));
+  ASSERT_TRUE(up.has_value());
+  EXPECT_GT(up->dot(true_up(pitch)), std::cos(0.1 * M_PI / 180));
+  // A strip the risers and walls agree with still sets it (the treads' path, as before).
+  segs.back() = segment(Z, 1680, 0.03, 0.29, 0.0006f);
+  const auto level = estimate_up(segs, GravityConfig{}, true_up(pitch - 1.0));
+  ASSERT_TRUE(level.has_value());
+  EXPECT_GT(level->dot(true_up(pitch)), std::cos(0.1 * M_PI / 180));
+}
+
 }  // namespace stairs
