@@ -353,6 +353,8 @@ struct PlaneGeometryConfig {
   float vertical_tol_deg = 15.0f;    // deg; riser: normal within this of horizontal
   float parallel_deg = 4.0f;          // deg; vertical planes this parallel are one family, merged by depth
   float axis_riser_max_deg = 60.0f;   // deg; vertical planes facing the camera within this give the stair axis
+  float axis_riser_min_width_m = 0.3f;  // m; if this wide (as the narrowest tread): a riser spans its flight,
+                                        // a baluster, post or chair leg facing the camera does not
   float edge_axis_min_change_deg = 0.5f;  // deg; with none, the nosings' depth-jump lines give it (looking down a
                                           // flight at an angle): a smaller turn keeps the first pass (< 1 cm per m)
   float merge_bin_m = 0.05f;         // m; height/depth histogram bin
@@ -366,6 +368,7 @@ struct PlaneGeometryConfig {
     v("vertical_tol_deg", vertical_tol_deg, 0.0f, 45.0f);
     v("parallel_deg", parallel_deg, 0.0f, 45.0f);
     v("axis_riser_max_deg", axis_riser_max_deg, 0.0f, 90.0f);
+    v("axis_riser_min_width_m", axis_riser_min_width_m, 0.0f, 10.0f);
     v("edge_axis_min_change_deg", edge_axis_min_change_deg, 0.0f, 45.0f);
     v("merge_bin_m", merge_bin_m, 0.001f, 1.0f);
     v("extent_percentile", extent_percentile, 0.0f, 0.49f);

@@ -128,12 +128,27 @@ std::vector<Group> histogram_merge(std::vector<Group> items, float bin) {
 }
 
 // Classification: treads (normal near up), vertical planes, others; the stair
-// axis from the vertical ones facing the camera, support-weighted (thesis 3.5).
+// axis from the vertical ones facing the camera, support-weighted (thesis 3.5), that are as wide
+// as a riser (a flight's balusters, each a strip facing the camera, turned a descent's axis 14
+// degrees and the tracker then misplaced the camera by up to 60 cm for 13 s).
 struct Classified {
   std::vector<Group> horizontal, vertical, other;
   float yaw_rad = 0.0f;
   bool axis_from_risers = false;
 };
+
+// How wide a vertical segment is: its cells' spread along its horizontal in-plane direction, as
+// the width of an even strip with that variance (12 sigma^2 = width^2).
+float horizontal_width_m(const Segment& s, const Eigen::Matrix3f& R) {
+  const Eigen::Vector3f h = Eigen::Vector3f::UnitZ().cross(R * s.normal);
+  if (h.norm() < 1e-6f) return 0.0f;
+  float var = 0.0f;
+  for (int k = 0; k < 2; ++k) {
+    const float d = (R * s.axis[k]).dot(h.normalized());
+    var += s.spread_m2[k] * d * d;
+  }
+  return std::sqrt(12.0f * var);
+}
 
 Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f& R, const PlaneGeometryConfig& cfg) {
   const float cos_h = std::cos(cfg.horizontal_tol_deg * kDeg), sin_v = std::sin(cfg.vertical_tol_deg * kDeg);
@@ -154,7 +169,8 @@ Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f&
       grp.key = c.z();
       out.horizontal.push_back(std::move(grp));
     } else if (std::abs(n.z()) < sin_v) {
-      if (n.x() < -cos_facing) axis += -n.head<2>().normalized() * static_cast<float>(grp.support);
+      if (n.x() < -cos_facing && horizontal_width_m(s, R) >= cfg.axis_riser_min_width_m)
+        axis += -n.head<2>().normalized() * static_cast<float>(grp.support);
       out.vertical.push_back(std::move(grp));
     } else {
       out.other.push_back(std::move(grp));

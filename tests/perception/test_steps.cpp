@@ -490,6 +490,46 @@ TEST(PerceptionSteps, RisersSeenFromBelowChainAcrossAnyPlausibleTread) {
   EXPECT_EQ(best_chain(tread_levels(ps, {}, cfg), cfg).steps(), 1);
 }
 
+// The stair axis comes from the risers facing the camera, and a riser spans its flight. A flight's
+// balusters (and posts, chair legs) are vertical strips facing the camera too, a few centimetres
+// wide, turned towards it: seen beside a flight going down (no riser in view) they turned its axis
+// 14 deg, and with a riser in view they pulled it off. A 1 m riser ahead and four 4 cm balusters
+// to its left, each turned 40 deg towards the camera: the axis is the riser's.
+TEST(PerceptionPlaneGeometry, BalustersFacingTheCameraDoNotTurnTheStairAxis) {
+  struct Rect {
+    Eigen::Vector3d c, n, u;  // centre, normal (towards the camera), horizontal in-plane axis; world
+    double half_u, half_z;
+  };
+  const double a = 40 * M_PI / 180;
+  std::vector<Rect> rects = {{{2.5, 0, -0.5}, {-1, 0, 0}, {0, 1, 0}, 0.5, 0.2}};
+  for (int k = 0; k < 4; ++k)
+    rects.push_back({{1.3 + 0.15 * k, 0.45, -0.3}, {-std::cos(a), -std::sin(a), 0}, {-std::sin(a), std::cos(a), 0}, 0.02, 0.4});
+  DepthImage img;
+  img.K = {320, 240, 262.5, 262.5, 159.5, 119.5};
+  img.depth.assign(320 * 240, 0);
+  const Eigen::Matrix3d R = test::optical_to_world(-15, 0);
+  for (int v = 0; v < 240; ++v)
+    for (int u = 0; u < 320; ++u) {
+      const Eigen::Vector3d d = R * Eigen::Vector3d((u - 159.5) / 262.5, (v - 119.5) / 262.5, 1.0);
+      double best = 1e9;
+      for (const Rect& r : rects) {
+        const double t = r.c.dot(r.n) / d.dot(r.n);  // along the optical ray, t = depth
+        const Eigen::Vector3d q = t * d - r.c;
+        if (t > 0 && t < best && std::abs(q.dot(r.u)) < r.half_u && std::abs(q.z()) < r.half_z) best = t;
+      }
+      if (best < 1e9) img.depth[static_cast<size_t>(v) * 320 + u] = static_cast<uint16_t>(best * 1000);
+    }
+  const PerceptionConfig cfg;
+  NormalGrid grid;
+  compute_normals(img, cfg.normals, grid);
+  std::vector<int> labels;
+  const std::vector<Segment> segments = grow_regions(grid, cfg.region_growing, 320, 240, labels);
+  ASSERT_GE(segments.size(), 3u);  // the riser and balusters
+  const PlaneSet ps = plane_geometry(grid, segments, R.cast<float>(), cfg.plane_geometry, cfg.output);
+  EXPECT_TRUE(ps.axis_from_risers);
+  EXPECT_NEAR(ps.yaw_rad * 180 / M_PI, 0.0, 1.0);
+}
+
 // A surface shows only its front. A patch 0.2 m above a robot's camera whose
 // fit leans 8 deg towards it (noise on a riser's top seen at a grazing angle
 // did this on a D435) faces up within the tread tolerance, but an upward-facing
