@@ -154,6 +154,18 @@ void add_presets_second(std::map<std::string, Preset>& m) {
           s.cylinders.push_back(handrail(s, 0, -1));
           return s;
         }}},
+      {"railings",
+       {"open_sides with a handrail on each side on balusters (two per tread, 2.4 cm thick)",
+        [] {
+          Scene s = stair("railings", {uniform_flight(10, 0.18, 0.25, 3.0)});
+          s.width_m = 1.0;
+          s.walls = Walls::None;
+          for (const int side : {-1, +1}) {
+            s.cylinders.push_back(handrail(s, 0, side));
+            for (const Cylinder& c : balusters(s, 0, side)) s.cylinders.push_back(c);
+          }
+          return s;
+        }}},
       {"two_flights",
        {"7 + 7 steps 0.18/0.25 m with a 1.2 m mid landing, 3 m top landing, walls both sides",
         [] {
@@ -337,6 +349,23 @@ Cylinder handrail(const Scene& s, int flight, int side, double height_m) {
   c.length_m = (b - a).norm();
   c.radius_m = 0.025;
   return c;
+}
+
+std::vector<Cylinder> balusters(const Scene& s, int flight, int side, double height_m) {
+  std::vector<Cylinder> out;
+  const double y = side * (0.5 * s.width_m - 0.08);  // under the handrail
+  for (const StepGeometry& g : step_geometry(s)) {
+    if (g.flight != flight || g.landing) continue;
+    for (const double at : {0.25, 0.75}) {
+      Cylinder c;
+      c.base_m = {g.riser_x_m - s.nosing_m + at * g.tread_m, y, g.top_z_m};
+      c.axis = Eigen::Vector3d::UnitZ();
+      c.length_m = height_m;
+      c.radius_m = 0.012;
+      out.push_back(c);
+    }
+  }
+  return out;
 }
 
 // "flights": each either explicit per-step lists or a uniform flight.

@@ -77,6 +77,9 @@ std::string preset_summary(const std::string& name);
 
 // Handrail along a flight's nosing line, height_m above it, on the given side (+1 left, -1 right).
 Cylinder handrail(const Scene& s, int flight, int side, double height_m = 0.9);
+// The balusters under such a handrail: two posts per tread (at a quarter and three quarters of its
+// depth), 2.4 cm thick, from the tread up to the rail.
+std::vector<Cylinder> balusters(const Scene& s, int flight, int side, double height_m = 0.9);
 
 // Scenario files (JSON). Keys: see drivers/sim/README.md. Throws
 // std::runtime_error "WHAT: reason" naming the key.
