@@ -94,15 +94,21 @@ StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction 
     int best = -1;
     double best_dev = 0;
     float best_rise = 0;
+    bool best_landing = false;
     for (size_t j = 0; j < levels.size(); ++j) {
       if (used[j]) continue;
       const auto dev = successor(a, levels[j], dir, a_nosing, c);
       if (!dev) continue;
       const float rise = std::abs(levels[j].z - a.z);
-      if (best < 0 || rise < best_rise) {  // the nearest level in height is the successor
+      // The successor is a step a tread's depth on where there is one (a level seen farther, the
+      // top of a head or a box beyond the flight a few centimetres below a nosing, is no landing
+      // before it: it cut a descent's chain at the top landing's edge), then the nearest in height.
+      const bool landing = is_landing(a, levels[j], dir, a_nosing, c);
+      if (best < 0 || (landing != best_landing ? !landing : rise < best_rise)) {
         best = static_cast<int>(j);
         best_dev = *dev;
         best_rise = rise;
+        best_landing = landing;
       }
     }
     if (best < 0) break;

@@ -94,6 +94,21 @@ TEST(PerceptionGrammar, DescendingChainFromTheLanding) {
   }
 }
 
+// Going down from the landing, a small level far beyond the flight a few centimetres below the
+// landing (the top of a person's head at the bottom of the stair, 4 m ahead) is a valid "landing"
+// after it, and the nearest in height: taken as its successor it left the landing out of the chain,
+// and the model never had the flight's first edge. The step a tread's depth on comes first.
+TEST(PerceptionGrammar, AFarLevelJustBelowTheLandingDoesNotCutTheDescentFromIt) {
+  const Level head = level(-1.10f, 3.87f, 4.10f);
+  const std::vector<Level> levels = {level(-1.0f, 0.5f, 1.5f), head, level(-1.17f, 1.6f, 1.78f),
+                                     level(-1.34f, 1.9f, 2.06f), level(-1.51f, 2.2f, 3.5f)};
+  const StairChain ch = best_chain(levels, StairConfig{});
+  EXPECT_EQ(ch.direction, Direction::Down);
+  ASSERT_EQ(ch.steps(), 3);
+  EXPECT_FLOAT_EQ(ch.levels.front().z, -1.0f);
+  for (const Level& l : ch.levels) EXPECT_NE(l.z, head.z);
+}
+
 // Going down, a level seen only as a nosing's jump is a tread between two
 // nosings; a jump 4 m past the last nosing (noise at the sensor's range on
 // the floor below) is no 4 m landing: the floor's plane is the next level.
