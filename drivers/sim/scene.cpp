@@ -166,6 +166,15 @@ void add_presets_second(std::map<std::string, Preset>& m) {
           }
           return s;
         }}},
+      {"people",
+       {"straight_down geometry with two people (0.4 m across, 1.7 m tall): one on the fifth tread, one at "
+        "the foot of the flight",
+        [] {
+          Scene s = stair("people", {uniform_flight(10, 0.18, 0.25, 3.0)});
+          s.cylinders.push_back({{1.1, 0.3, 5 * 0.18}, Eigen::Vector3d::UnitZ(), 1.7, 0.2});
+          s.cylinders.push_back({{-0.6, -0.35, 0.0}, Eigen::Vector3d::UnitZ(), 1.7, 0.2});
+          return s;
+        }}},
       {"two_flights",
        {"7 + 7 steps 0.18/0.25 m with a 1.2 m mid landing, 3 m top landing, walls both sides",
         [] {
