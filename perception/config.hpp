@@ -353,8 +353,8 @@ struct PlaneGeometryConfig {
   float vertical_tol_deg = 15.0f;    // deg; riser: normal within this of horizontal
   float parallel_deg = 4.0f;          // deg; vertical planes this parallel are one family, merged by depth
   float axis_riser_max_deg = 60.0f;   // deg; vertical planes facing the camera within this give the stair axis
-  float axis_riser_min_width_m = 0.2f;  // m; if this wide: wider than a post (a newel post is 8-15 cm, a
-                                        // baluster or chair leg a few), and a riser cut by the view is a piece
+  float axis_riser_min_width_m = 0.3f;  // m; if this wide (as the narrowest tread): a riser spans its flight;
+                                        // balusters, posts and a person's body (strips of 0.2-0.3 m) do not
   float edge_axis_min_change_deg = 0.5f;  // deg; with none, the nosings' depth-jump lines give it (looking down a
                                           // flight at an angle): a smaller turn keeps the first pass (< 1 cm per m)
   float merge_bin_m = 0.05f;         // m; height/depth histogram bin

@@ -128,9 +128,10 @@ std::vector<Group> histogram_merge(std::vector<Group> items, float bin) {
 }
 
 // Classification: treads (normal near up), vertical planes, others; the stair
-// axis from the vertical ones facing the camera, support-weighted (thesis 3.5), that are wider
-// than a post (a flight's balusters, each a strip facing the camera, turned a descent's axis 14
-// degrees and the tracker then misplaced the camera by up to 60 cm for 13 s).
+// axis from the vertical ones facing the camera, support-weighted (thesis 3.5), that are as wide
+// as a tread (a flight's balusters, each a strip facing the camera, turned a descent's axis 14
+// degrees and the tracker then misplaced the camera by up to 60 cm for 13 s; a person's body is
+// strips of 0.2-0.3 m).
 struct Classified {
   std::vector<Group> horizontal, vertical, other;
   float yaw_rad = 0.0f;

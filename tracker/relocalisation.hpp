@@ -2,7 +2,9 @@
 // nosings and risers all disagree: a periodic stair is ambiguous by whole
 // steps, so registration is tried from the motion prior shifted by -k..k steps
 // in half steps and the shift that agrees best with the model wins (ties go to
-// the smallest shift, i.e. to the motion prior and its step-count bookkeeping).
+// the smallest shift, i.e. to the motion prior and its step-count bookkeeping). Shifts beyond half a
+// step and farther than `max_shift_m` along the stair (how far off the prior may be, plus what ICP
+// reaches from a start) are not tried: the prior rules them out.
 #pragma once
 
 #include "tracker/registration.hpp"
@@ -13,6 +15,6 @@ struct RelocalisationConfig;
 
 Registration relocalise(const RegistrationInput& in, const StairMap& map, const Pose4& prior,
                         const RelocalisationConfig& c, const RegistrationConfig& registration,
-                        const StairPriorConfig& stair);
+                        const StairPriorConfig& stair, double max_shift_m);
 
 }  // namespace stairs

@@ -1,5 +1,7 @@
 #include "tracker/tracker.hpp"
 
+#include <limits>
+
 #include "tracker/end_wall.hpp"
 #include "tracker/merge.hpp"
 #include "tracker/model_output.hpp"
@@ -340,7 +342,14 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   // Odometry over a gap is a better prior than a whole-step search.
   bool relocalising =
       !with_odometry && (since_accept_s > config_.relocalisation.after_s || model_.state == TrackingState::Lost);
-  Registration reg = relocalising ? relocalise(input, map_, start_pose, config_.relocalisation, config_.registration, config_.stair)
+  // How far along the stair a whole-step search may shift the prior: as far as the prior may be off,
+  // plus what ICP reaches from a start (a lost stair's prior is stale: every shift).
+  const double max_shift_m = model_.state == TrackingState::Lost
+                                 ? std::numeric_limits<double>::infinity()
+                                 : prior_x_uncertainty_m(obs.source_utime, with_odometry) +
+                                       config_.registration.icp_max_tread_fraction * typical_tread_m(map_, config_.stair);
+  Registration reg = relocalising ? relocalise(input, map_, start_pose, config_.relocalisation, config_.registration,
+                                               config_.stair, max_shift_m)
                                   : register_to_map(input, map_, start_pose, config_.registration, config_.stair);
   // Risers and nosings on the model, none of which agrees: x is the prior's
   // alone, and the prior is off by more than ICP reaches (a robot tipping over
@@ -348,7 +357,7 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   // wrong level for 19 frames). Search as after a gap.
   if (!relocalising && !with_odometry && reg.x_within > 0 && reg.x_inliers == 0) {
     relocalising = true;
-    reg = relocalise(input, map_, start_pose, config_.relocalisation, config_.registration, config_.stair);
+    reg = relocalise(input, map_, start_pose, config_.relocalisation, config_.registration, config_.stair, max_shift_m);
   }
   // Entirely beyond the model (the next flight seen from a landing): nothing
   // to register against, so the motion prior places it while it is fresh.
