@@ -18,10 +18,7 @@ Registration relocalise(const RegistrationInput& in, const StairMap& map, const 
     // after 0.4 s without steps, the mid landing's edge and the next flight's first nosing in view,
     // fitted best a whole step back (the new flight's points then lay on the model) and the tracker
     // re-seeded the second flight onto the first.
-    if (std::abs(k) > 1 && std::abs(k) * half_step.x() > max_shift_m) {
-      if (c.step_range == 0) break;
-      continue;
-    }
+    if (std::abs(k) > 1 && std::abs(k) * half_step.x() > max_shift_m) continue;
     Pose4 start = prior;
     start.t_m += k * half_step;
     const Registration r = register_to_map(in, map, start, registration, stair);

@@ -1,7 +1,5 @@
 #include "tracker/tracker.hpp"
 
-#include <limits>
-
 #include "tracker/end_wall.hpp"
 #include "tracker/merge.hpp"
 #include "tracker/model_output.hpp"
@@ -14,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace stairs {
 
