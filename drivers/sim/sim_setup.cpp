@@ -4,6 +4,7 @@
 #include "common/json_io.hpp"
 #include "drivers/sim/furniture.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace stairs::sim {
@@ -58,6 +59,7 @@ void add_setup_options(Options& o) {
       .add("pitch", "DEG", "camera pitch, negative = down (carrier default: handheld -35, robot mount -20)")
       .add("lateral", "M", "offset from the flight's centre line, + = left", "0")
       .add("yaw", "DEG", "heading offset from straight up/down the stair", "0")
+      .add("roll", "DEG", "hand-held: camera roll about its optical axis, + = right side down (a robot's rolls with its body)", "0")
       .add("wobble", "X", "scale of the hand-held wobble / robot vibration, 0 = steady", "1")
       .add("approach", "M", "distance before the first edge where approach/full start", "3")
       .add("sensor", "NAME", "kinect1 (structured light, 640x480), kinect2 (time of flight, 512x424) or d435 (stereo, 640x480)",
@@ -138,6 +140,10 @@ SimSetup setup_from_options(const Options& o) {
   if (o.has("pitch")) t.pitch_deg = o.get_double("pitch");
   t.lateral_m = o.get_double("lateral");
   t.yaw_deg = o.get_double("yaw");
+  t.roll_deg = o.get_double("roll");
+  if (t.roll_deg != 0.0 && t.carrier != Carrier::HandHeld)
+    throw std::runtime_error("--roll is for a hand-held camera: a robot's camera rolls with its body (mount)");
+  if (std::abs(t.roll_deg) > 45.0) throw std::runtime_error("--roll must be within +-45 deg");
   t.wobble = o.get_double("wobble");
   t.approach_m = positive(o, "approach");
   const double seed = o.get_double("seed");
@@ -174,6 +180,7 @@ nlohmann::json setup_to_json(const SimSetup& s) {
             {"pitch_deg", t.pitch_deg},
             {"lateral_m", t.lateral_m},
             {"yaw_deg", t.yaw_deg},
+            {"roll_deg", t.roll_deg},
             {"wobble", t.wobble}}},
           {"scenario", scene_to_json(s.scene)}};
 }

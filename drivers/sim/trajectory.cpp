@@ -170,7 +170,7 @@ Eigen::Isometry3d Trajectory::pose_at(double t) const {
   double y = c.lateral_m;
   double z = smoothed_surface_m(x, y) + c.height_m;
   double yaw = at.heading_deg;
-  double pitch = c.pitch_deg, roll = 0.0;
+  double pitch = c.pitch_deg, roll = c.roll_deg;
   const double w = c.wobble;
   if (c.carrier == Carrier::HandHeld) {
     // Gait: bounce at the step frequency, sway, and a slowly wandering hand.

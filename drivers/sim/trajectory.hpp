@@ -38,6 +38,7 @@ struct TrajectoryConfig {
   double pitch_deg = -35.0; // hand-held: below the horizon; robot: mount pitch relative to the body
   double lateral_m = 0.0;   // offset from the flight's centre line, + = left
   double yaw_deg = 0.0;     // heading offset from straight up (or down) the stair
+  double roll_deg = 0.0;    // hand-held: the hand's roll about the optical axis (+ = right side down), under the wobble
   double wobble = 1.0;      // scale of the gait wobble / robot vibration, 0 = steady
   double approach_m = 3.0;  // distance to the first edge where Approach and Full begin
   double turn_s = 4.0;      // round trip: seconds for the half turn on the spot (45 deg/s)

@@ -187,3 +187,19 @@ TEST(SimTruth, ARobotCarriesItsCameraOnARigidMount) {
   EXPECT_NEAR(flight_tilt_deg[flight_tilt_deg.size() / 2], std::atan(0.18 / 0.25) * 180.0 / M_PI, 0.5);
 }
 
+
+// A hand-held camera's roll (--roll) is the hand's, under the gait's +-2 deg: the truth's roll
+// averages to it over a walk and stays within the wobble of it.
+TEST(SimTruth, AHandHeldRollIsHeldUnderTheWobble) {
+  const Scene s = make_preset("straight_up");
+  TrajectoryConfig c = trajectory_defaults(Carrier::HandHeld);
+  c.roll_deg = 7.0;
+  const Trajectory traj(s, c);
+  double sum = 0.0;
+  for (int f = 0; f < traj.frames(); ++f) {
+    const double roll = roll_deg(traj.pose(f));
+    EXPECT_NEAR(roll, 7.0, 2.5) << f;
+    sum += roll;
+  }
+  EXPECT_NEAR(sum / traj.frames(), 7.0, 0.5);
+}
