@@ -277,6 +277,11 @@ struct DepthJumpEdgesConfig {
   int max_lines_per_group = 3;     // lines fitted per height group
   float max_tilt_deg = 10.0f;      // deg; a step edge is horizontal within this
   float max_axis_deg = 20.0f;      // deg; and across the stair axis within this
+  float axis_search_deg = 60.0f;   // deg; with no axis from risers and no line within max_axis_deg of across
+                                   // forward, lines this far off give it (looking down a flight 35 deg off its
+                                   // axis); beyond it lines run along the view: rails, walls' tops
+  float axis_cluster_deg = 10.0f;  // deg; a flight's nosings are parallel within this (the axis from the
+                                   // best-supported direction's lines: a rail's top along the flight is none)
   float refine_max_m = 0.05f;      // m; a jump placed at its pixel row moves at most this far from the
                                    // cell's mean point (about a cell at 2 m; farther means a bad normal)
   float level_tol_deg = 30.0f;     // deg; a near cell whose normal is this close to up is a tread: its
@@ -296,6 +301,8 @@ struct DepthJumpEdgesConfig {
     v("max_lines_per_group", max_lines_per_group, 1, 100);
     v("max_tilt_deg", max_tilt_deg, 0.0f, 90.0f);
     v("max_axis_deg", max_axis_deg, 0.0f, 90.0f);
+    v("axis_search_deg", axis_search_deg, 0.0f, 90.0f);
+    v("axis_cluster_deg", axis_cluster_deg, 0.0f, 90.0f);
     v("refine_max_m", refine_max_m, 0.0f, 1.0f);
     v("level_tol_deg", level_tol_deg, 0.0f, 90.0f);
     v("row_tolerance_m", row_tolerance_m, 0.0f, 1.0f);
@@ -321,6 +328,11 @@ struct NormalImageEdgesConfig {
   float min_bend_deg = 30.0f;      // deg; the surfaces on the two sides turn by at least this
   float max_tilt_deg = 10.0f;      // deg; a step edge is horizontal within this
   float max_axis_deg = 20.0f;      // deg; and across the stair axis within this
+  float axis_search_deg = 60.0f;   // deg; with no axis from risers and no line within max_axis_deg of across
+                                   // forward, lines this far off give it (looking down a flight 35 deg off its
+                                   // axis); beyond it lines run along the view: rails, walls' tops
+  float axis_cluster_deg = 10.0f;  // deg; a flight's nosings are parallel within this (the axis from the
+                                   // best-supported direction's lines: a rail's top along the flight is none)
   float max_range_m = 4.0f;        // m; farther edges are dropped (far normals are noisy)
   float merge_bin_m = 0.05f;       // m; merge histogram bin of horizontal distance and height
   float merge_bin_deg = 10.0f;     // deg; merge histogram bin of direction (step edges are all
@@ -341,6 +353,8 @@ struct NormalImageEdgesConfig {
     v("min_bend_deg", min_bend_deg, 0.0f, 180.0f);
     v("max_tilt_deg", max_tilt_deg, 0.0f, 90.0f);
     v("max_axis_deg", max_axis_deg, 0.0f, 90.0f);
+    v("axis_search_deg", axis_search_deg, 0.0f, 90.0f);
+    v("axis_cluster_deg", axis_cluster_deg, 0.0f, 90.0f);
     v("max_range_m", max_range_m, 0.0f, 100.0f);
     v("merge_bin_m", merge_bin_m, 0.001f, 10.0f);
     v("merge_bin_deg", merge_bin_deg, 0.01f, 180.0f);
@@ -355,6 +369,11 @@ struct PlaneGeometryConfig {
   float axis_riser_max_deg = 60.0f;   // deg; vertical planes facing the camera within this give the stair axis
   float axis_riser_min_width_m = 0.3f;  // m; if this wide (as the narrowest tread): a riser spans its flight;
                                         // balusters, posts and a person's body (strips of 0.2-0.3 m) do not
+  float axis_riser_max_height_m = 0.3f;  // m; and no taller than a rise (DIN's highest, 0.2 m, with the 0.4
+                                         // tolerance); taller ones (walls, cabinets, people) give it only
+                                         // where neither risers nor the nosings' lines do
+  float axis_riser_min_spacing_m = 0.14f;  // m; parallel ones this far apart are a flight's risers (the shortest
+                                           // DIN tread, 0.23 m, less the 0.4 tolerance): they alone give the axis
   float edge_axis_min_change_deg = 0.5f;  // deg; with none, the nosings' depth-jump lines give it (looking down a
                                           // flight at an angle): a smaller turn keeps the first pass (< 1 cm per m)
   float merge_bin_m = 0.05f;         // m; height/depth histogram bin
@@ -369,6 +388,8 @@ struct PlaneGeometryConfig {
     v("parallel_deg", parallel_deg, 0.0f, 45.0f);
     v("axis_riser_max_deg", axis_riser_max_deg, 0.0f, 90.0f);
     v("axis_riser_min_width_m", axis_riser_min_width_m, 0.0f, 10.0f);
+    v("axis_riser_max_height_m", axis_riser_max_height_m, 0.0f, 10.0f);
+    v("axis_riser_min_spacing_m", axis_riser_min_spacing_m, 0.0f, 10.0f);
     v("edge_axis_min_change_deg", edge_axis_min_change_deg, 0.0f, 45.0f);
     v("merge_bin_m", merge_bin_m, 0.001f, 1.0f);
     v("extent_percentile", extent_percentile, 0.0f, 0.49f);

@@ -289,16 +289,35 @@ std::vector<JumpEdge> depth_jump_edges(const NormalGrid& g, const DepthImage& fr
   return edges;
 }
 
-std::optional<float> axis_from_edges(const std::vector<JumpEdge>& edges) {
-  Eigen::Vector2f doubled = Eigen::Vector2f::Zero();
+std::optional<EdgeAxis> axis_from_edges(const std::vector<JumpEdge>& edges, float cluster_deg, float height_gap_m) {
+  // The axis is each line's direction turned a quarter; doubled, its sign drops out.
+  std::vector<Eigen::Vector2f> doubled;
   for (const JumpEdge& e : edges) {
-    // The axis is the line's direction turned a quarter; doubled, its sign drops out.
     const Eigen::Vector2f a(e.across.y(), -e.across.x());
-    const float w = static_cast<float>(e.edge.support);
-    doubled += w * Eigen::Vector2f(a.x() * a.x() - a.y() * a.y(), 2 * a.x() * a.y());
+    doubled.push_back(static_cast<float>(e.edge.support) * Eigen::Vector2f(a.x() * a.x() - a.y() * a.y(), 2 * a.x() * a.y()));
   }
-  if (doubled.squaredNorm() == 0.0f) return std::nullopt;
-  return 0.5f * std::atan2(doubled.y(), doubled.x());  // within 90 deg of forward: away from the camera
+  // A flight's nosings are parallel: the lines within cluster_deg of the line with the most support
+  // near it, a rail's or a wall's top edge along the flight is not one of them.
+  const float cos_cluster = std::cos(2.0f * cluster_deg * static_cast<float>(M_PI) / 180.0f);
+  auto near = [&](size_t i, size_t j) { return doubled[i].normalized().dot(doubled[j].normalized()) >= cos_cluster; };
+  Eigen::Vector2f best = Eigen::Vector2f::Zero();
+  size_t best_i = 0;
+  for (size_t i = 0; i < doubled.size(); ++i) {
+    Eigen::Vector2f sum = Eigen::Vector2f::Zero();
+    for (size_t j = 0; j < doubled.size(); ++j)
+      if (near(i, j)) sum += doubled[j];
+    if (sum.squaredNorm() > best.squaredNorm()) best = sum, best_i = i;
+  }
+  if (best.squaredNorm() == 0.0f) return std::nullopt;
+  // How many heights its lines lie at (a flight's nosings, a rise apart; lines of one height group
+  // may be one edge broken).
+  std::vector<float> zs;
+  for (size_t j = 0; j < doubled.size(); ++j)
+    if (near(best_i, j)) zs.push_back(edges[j].z);
+  std::sort(zs.begin(), zs.end());
+  int heights = 1;
+  for (size_t k = 1; k < zs.size(); ++k) heights += zs[k] - zs[k - 1] > 2 * height_gap_m;
+  return EdgeAxis{0.5f * std::atan2(best.y(), best.x()), heights};  // within 90 deg of forward
 }
 
 }  // namespace stairs

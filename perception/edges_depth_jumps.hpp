@@ -28,9 +28,15 @@ struct JumpEdge {
 std::vector<JumpEdge> depth_jump_edges(const NormalGrid& grid, const DepthImage& frame, const Eigen::Matrix3f& gravity,
                                        float yaw_rad, const DepthJumpEdgesConfig& cfg, float min_length_m);
 
-// The stair axis (yaw from camera forward, rad) perpendicular to the edges' lines, their support
-// weighting the doubled angles (a line's direction has no sign); none without edges. Looking down a
-// flight its risers are hidden and the nosings are the only lines across it.
-std::optional<float> axis_from_edges(const std::vector<JumpEdge>& edges);
+struct EdgeAxis {
+  float yaw_rad = 0;  // from camera forward
+  int heights = 0;    // distinct heights its lines lie at (more than 2 height_gap_m apart)
+};
+
+// The stair axis perpendicular to the edges' lines, their support weighting the doubled angles (a
+// line's direction has no sign), over the lines within cluster_deg of the best-supported direction;
+// none without edges. Looking down a flight its risers are hidden and the nosings are the only lines
+// across it.
+std::optional<EdgeAxis> axis_from_edges(const std::vector<JumpEdge>& edges, float cluster_deg, float height_gap_m);
 
 }  // namespace stairs

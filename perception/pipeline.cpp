@@ -125,13 +125,28 @@ Observation Pipeline::process(const DepthImage& frame) {
   clock.mark("edges_depth_jumps");
   // Looking down a flight the risers are hidden: without one facing the camera the axis was taken
   // forward, and a camera turned from the flight then places each nosing by where its seen part's
-  // middle lies (an 8-13 deg turn shortened treads by 0.5-1 cm). The nosings' lines give the axis.
+  // middle lies (an 8-13 deg turn shortened treads by 0.5-1 cm). The nosings' lines give the axis;
+  // where none lies near across forward, lines farther off are searched (a walker 35 deg off a
+  // descent's axis saw no step in any frame). A wall facing the camera (taller than a rise) gives it
+  // where they do not, or only at one height: a side wall seen obliquely is one, but so is the end
+  // wall of a top landing, and one line (a hole's rim in a dark tread) is less than a wall.
   if (!ps.axis_from_risers) {
-    const std::optional<float> axis = axis_from_edges(jump_edges);
+    const DepthJumpEdgesConfig& ec = cfg_.edges_depth_jumps;
+    std::optional<EdgeAxis> edge_axis = axis_from_edges(jump_edges, ec.axis_cluster_deg, ec.height_gap_m);
+    if (!edge_axis && ec.axis_search_deg > ec.max_axis_deg) {
+      DepthJumpEdgesConfig wide = ec;
+      wide.max_axis_deg = ec.axis_search_deg;
+      edge_axis = axis_from_edges(depth_jump_edges(grid_, frame, R, ps.yaw_rad, wide, cfg_.stair.min_step_width_m),
+                                  ec.axis_cluster_deg, ec.height_gap_m);
+      clock.mark("edges_depth_jumps");
+    }
+    std::optional<float> axis;
+    if (edge_axis) axis = edge_axis->yaw_rad;
+    if (ps.tall_facing_yaw_rad && (!edge_axis || edge_axis->heights < 2)) axis = ps.tall_facing_yaw_rad;
     if (axis && std::abs(*axis - ps.yaw_rad) > cfg_.plane_geometry.edge_axis_min_change_deg * M_PI / 180.0) {
       ps = plane_geometry(grid_, segments, R, cfg_.plane_geometry, cfg_.output, axis);
       clock.mark("plane_geometry");
-      jump_edges = depth_jump_edges(grid_, frame, R, ps.yaw_rad, cfg_.edges_depth_jumps, cfg_.stair.min_step_width_m);
+      jump_edges = depth_jump_edges(grid_, frame, R, ps.yaw_rad, ec, cfg_.stair.min_step_width_m);
       clock.mark("edges_depth_jumps");
     }
   }

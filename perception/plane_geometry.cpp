@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <tuple>
 #include <utility>
 
@@ -128,14 +129,15 @@ std::vector<Group> histogram_merge(std::vector<Group> items, float bin) {
 }
 
 // Classification: treads (normal near up), vertical planes, others; the stair
-// axis from the vertical ones facing the camera, support-weighted (thesis 3.5), that are as wide
+// axis from the vertical ones facing the camera (axis_of) that are as wide
 // as a tread (a flight's balusters, each a strip facing the camera, turned a descent's axis 14
 // degrees and the tracker then misplaced the camera by up to 60 cm for 13 s; a person's body is
 // strips of 0.2-0.3 m).
 struct Classified {
   std::vector<Group> horizontal, vertical, other;
   float yaw_rad = 0.0f;
-  bool axis_from_risers = false;
+  bool axis_from_risers = false, axis_from_riser_family = false;
+  std::optional<float> tall_yaw_rad;
 };
 
 // How wide a vertical segment is: its cells' spread along its horizontal in-plane direction, as
@@ -151,11 +153,62 @@ float horizontal_width_m(const Segment& s, const Eigen::Matrix3f& R) {
   return std::sqrt(12.0f * var);
 }
 
+// A vertical plane facing the camera, wide enough to stand for the stair's axis.
+struct Facing {
+  Eigen::Vector2f dir;  // horizontal, unit: the way the plane faces away from the camera
+  float offset_m;       // distance of the plane from the camera along dir
+  int support;
+};
+
+// The stair axis from the planes facing the camera, support-weighted (thesis 3.5). A flight's
+// risers are parallel planes a tread apart: where such a family is in view (two planes at least
+// min_spacing_m apart along their normal), the axis is the best-supported family's alone, and a
+// wall or a cabinet front seen at an angle beside it does not pull it (a walker 35 deg off the
+// flight's axis saw the side wall as the biggest plane facing it: no riser was taken for one, and no
+// step was found in any frame). Without such a family, all of them.
+struct Axis {
+  Eigen::Vector2f dir;  // support-weighted sum of the planes' directions
+  bool family;          // from a family of parallel planes a tread apart
+};
+
+std::optional<Axis> axis_of(const std::vector<Facing>& facing, float parallel_deg, float min_spacing_m) {
+  if (facing.empty()) return std::nullopt;
+  const float cos_par = std::cos(parallel_deg * kDeg);
+  Eigen::Vector2f all = Eigen::Vector2f::Zero(), best = Eigen::Vector2f::Zero();
+  int best_support = 0;
+  std::vector<float> offsets;
+  for (const Facing& f : facing) {
+    all += f.dir * static_cast<float>(f.support);
+    Eigen::Vector2f sum = Eigen::Vector2f::Zero();
+    int support = 0;
+    offsets.clear();
+    for (const Facing& g : facing)
+      if (g.dir.dot(f.dir) >= cos_par) {
+        sum += g.dir * static_cast<float>(g.support);
+        support += g.support;
+        offsets.push_back(g.offset_m);
+      }
+    const auto [lo, hi] = std::minmax_element(offsets.begin(), offsets.end());
+    if (*hi - *lo >= min_spacing_m && support > best_support) best = sum, best_support = support;
+  }
+  return best_support > 0 ? Axis{best, true} : Axis{all, false};
+}
+
+// How tall a vertical segment is: its cells' spread along up, as the height of an even strip.
+float height_m(const Segment& s, const Eigen::Matrix3f& R) {
+  float var = 0.0f;
+  for (int k = 0; k < 2; ++k) {
+    const float d = (R * s.axis[k]).z();
+    var += s.spread_m2[k] * d * d;
+  }
+  return std::sqrt(12.0f * var);
+}
+
 Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f& R, const PlaneGeometryConfig& cfg) {
   const float cos_h = std::cos(cfg.horizontal_tol_deg * kDeg), sin_v = std::sin(cfg.vertical_tol_deg * kDeg);
   const float cos_facing = std::cos(cfg.axis_riser_max_deg * kDeg);
   Classified out;
-  Eigen::Vector2f axis = Eigen::Vector2f::Zero();
+  std::vector<Facing> facing, tall;
   for (size_t i = 0; i < segments.size(); ++i) {
     const Segment& s = segments[i];
     Group grp;
@@ -170,15 +223,21 @@ Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f&
       grp.key = c.z();
       out.horizontal.push_back(std::move(grp));
     } else if (std::abs(n.z()) < sin_v) {
-      if (n.x() < -cos_facing && horizontal_width_m(s, R) >= cfg.axis_riser_min_width_m)
-        axis += -n.head<2>().normalized() * static_cast<float>(grp.support);
+      if (n.x() < -cos_facing && horizontal_width_m(s, R) >= cfg.axis_riser_min_width_m) {
+        const Eigen::Vector2f dir = -n.head<2>().normalized();
+        (height_m(s, R) <= cfg.axis_riser_max_height_m ? facing : tall).push_back({dir, dir.dot(c.head<2>()), grp.support});
+      }
       out.vertical.push_back(std::move(grp));
     } else {
       out.other.push_back(std::move(grp));
     }
   }
-  out.axis_from_risers = axis.squaredNorm() > 0;
-  out.yaw_rad = out.axis_from_risers ? std::atan2(axis.y(), axis.x()) : 0.0f;
+  const auto axis = axis_of(facing, cfg.parallel_deg, cfg.axis_riser_min_spacing_m);
+  out.axis_from_risers = axis.has_value();
+  out.axis_from_riser_family = axis && axis->family;
+  out.yaw_rad = axis ? std::atan2(axis->dir.y(), axis->dir.x()) : 0.0f;
+  if (const auto wall = axis_of(tall, cfg.parallel_deg, cfg.axis_riser_min_spacing_m))
+    out.tall_yaw_rad = std::atan2(wall->dir.y(), wall->dir.x());
   return out;
 }
 
@@ -273,10 +332,13 @@ PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Ei
 PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segments, const Eigen::Matrix3f& R,
                         const PlaneGeometryConfig& cfg, const OutputConfig& caps, std::optional<float> axis_yaw_rad) {
   Classified classified = classify(segments, R, cfg);
-  if (axis_yaw_rad) classified.yaw_rad = *axis_yaw_rad, classified.axis_from_risers = false;
+  if (axis_yaw_rad)
+    classified.yaw_rad = *axis_yaw_rad, classified.axis_from_risers = classified.axis_from_riser_family = false;
   PlaneSet out;
   out.yaw_rad = classified.yaw_rad;
   out.axis_from_risers = classified.axis_from_risers;
+  out.axis_from_riser_family = classified.axis_from_riser_family;
+  out.tall_facing_yaw_rad = classified.tall_yaw_rad;
   ExtentScratch scratch;
   std::vector<int> cells;
   for (const Group& grp : merge(std::move(classified), segments, R, cfg, caps.max_planes)) {

@@ -114,7 +114,20 @@ INSTANTIATE_TEST_SUITE_P(Sim, SensorAccuracy,
                              // second flight was re-seeded onto the first (8 of 14 model steps, 184 frames
                              // with false tracked steps): a search no farther than the prior may be off.
                              Walk{"two_flights_up_kinect1", "--preset two_flights --direction up --sensor kinect1 "
-                                  "--carrier handheld --height 0.97 --pitch -38.4 --lateral -0.02 --yaw -2.6", 86079}),
+                                  "--carrier handheld --height 0.97 --pitch -38.4 --lateral -0.02 --yaw -2.6", 86079},
+                             // Walking 30-35 deg off the flight's axis, the side wall faces the camera as
+                             // much as the risers do and is the biggest plane in view: it gave the stair axis
+                             // (going up, the risers were no risers for it) and, going down, kept the nosings
+                             // out of the lines searched for the axis. No step in any frame before.
+                             Walk{"oblique_up_kinect1", "--preset straight_up --yaw 35 --sensor kinect1", 3},
+                             Walk{"oblique_down_kinect1", "--preset straight_down --yaw -30 --sensor kinect1", 4},
+                             Walk{"oblique_down_kinect2", "--preset straight_down --yaw 35 --sensor kinect2", 3},
+                             // A robot's camera on a 1.1 m mast (no mount configured), rocking 10 cm along the
+                             // stair between frames as the body pitches over the nosings: a whole-step search
+                             // put it a step back four frames in a row and the velocity then carried it up
+                             // the stair a step a frame while it went down (34 false model steps before).
+                             Walk{"mast_down_kinect1", "--preset nosing --direction down --carrier robot --height 1.1 "
+                                  "--pitch -45 --sensor kinect1", 7}),
                          kName);
 
 }  // namespace

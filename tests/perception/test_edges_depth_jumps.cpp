@@ -125,10 +125,31 @@ TEST(PerceptionEdgesDepthJumps, TheNosingsLinesGiveTheStairAxis) {
   edges[1].across = {std::sin(turn), -std::cos(turn)};
   edges[2].across = {0.0f, 1.0f};  // a short line across forward, little support
   edges[0].edge.support = 200, edges[1].edge.support = 200, edges[2].edge.support = 1;
-  const std::optional<float> axis = axis_from_edges(edges);
+  const auto axis = axis_from_edges(edges, 10.0f, 0.02f);
   ASSERT_TRUE(axis.has_value());
-  EXPECT_NEAR(*axis, turn, 0.002f);
-  EXPECT_FALSE(axis_from_edges({}).has_value());
+  EXPECT_NEAR(axis->yaw_rad, turn, 0.002f);
+  EXPECT_FALSE(axis_from_edges({}, 10.0f, 0.02f).has_value());
+}
+
+// Looking down a flight 35 deg off its axis, the lines searched for the axis may include others (a
+// table's or a wall's edge seen against what lies beyond): the nosings are parallel to each other
+// and it is not, so the axis is theirs alone (a support-weighted mean of all was 14 deg off).
+TEST(PerceptionEdgesDepthJumps, ALineAcrossOtherThanTheNosingsDoesNotTurnTheirAxis) {
+  const float turn = 35.0f * static_cast<float>(M_PI) / 180.0f;
+  std::vector<JumpEdge> edges(4);
+  for (int k = 0; k < 3; ++k) {
+    edges[k].across = {-std::sin(turn), std::cos(turn)};
+    edges[k].edge.support = 100;
+    edges[k].z = -0.17f * static_cast<float>(k);  // a rise apart
+  }
+  const float other = turn + 50.0f * static_cast<float>(M_PI) / 180.0f;
+  edges[3].across = {-std::sin(other), std::cos(other)};  // 50 deg off the nosings
+  edges[3].edge.support = 150;
+  edges[3].z = -0.1f;
+  const auto axis = axis_from_edges(edges, 10.0f, 0.02f);
+  ASSERT_TRUE(axis.has_value());
+  EXPECT_NEAR(axis->yaw_rad, turn, 0.002f);
+  EXPECT_EQ(axis->heights, 3);  // the nosings' three
 }
 
 }  // namespace

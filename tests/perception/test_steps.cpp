@@ -505,24 +505,18 @@ TEST(PerceptionSteps, RisersSeenFromBelowChainAcrossAnyPlausibleTread) {
   EXPECT_EQ(best_chain(tread_levels(ps, {}, cfg), cfg).steps(), 1);
 }
 
-// The stair axis comes from the risers facing the camera, and a riser spans its flight. A flight's
-// balusters (and posts, chair legs) are vertical strips facing the camera too, a few centimetres
-// wide, turned towards it: seen beside a flight going down (no riser in view) they turned its axis
-// 14 deg, and with a riser in view they pulled it off. A 1 m riser ahead and four 4 cm balusters
-// to its left, each turned 40 deg towards the camera: the axis is the riser's.
-TEST(PerceptionPlaneGeometry, BalustersFacingTheCameraDoNotTurnTheStairAxis) {
-  struct Rect {
-    Eigen::Vector3d c, n, u;  // centre, normal (towards the camera), horizontal in-plane axis; world
-    double half_u, half_z;
-  };
-  const double a = 40 * M_PI / 180;
-  std::vector<Rect> rects = {{{2.5, 0, -0.5}, {-1, 0, 0}, {0, 1, 0}, 0.5, 0.2}};
-  for (int k = 0; k < 4; ++k)
-    rects.push_back({{1.3 + 0.15 * k, 0.45, -0.3}, {-std::cos(a), -std::sin(a), 0}, {-std::sin(a), std::cos(a), 0}, 0.02, 0.4});
+// Rectangles rendered at 320x240 by a camera at the origin pitched `pitch_deg`, segmented and
+// merged into planes by the default config.
+struct Rect {
+  Eigen::Vector3d c, n, u;  // centre, normal (towards the camera), horizontal in-plane axis; world
+  double half_u, half_z;
+};
+
+PlaneSet planes_of(const std::vector<Rect>& rects, double pitch_deg, size_t min_segments) {
   DepthImage img;
   img.K = {320, 240, 262.5, 262.5, 159.5, 119.5};
   img.depth.assign(320 * 240, 0);
-  const Eigen::Matrix3d R = test::optical_to_world(-15, 0);
+  const Eigen::Matrix3d R = test::optical_to_world(pitch_deg, 0);
   for (int v = 0; v < 240; ++v)
     for (int u = 0; u < 320; ++u) {
       const Eigen::Vector3d d = R * Eigen::Vector3d((u - 159.5) / 262.5, (v - 119.5) / 262.5, 1.0);
@@ -539,10 +533,41 @@ TEST(PerceptionPlaneGeometry, BalustersFacingTheCameraDoNotTurnTheStairAxis) {
   compute_normals(img, cfg.normals, grid);
   std::vector<int> labels;
   const std::vector<Segment> segments = grow_regions(grid, cfg.region_growing, 320, 240, labels);
-  ASSERT_GE(segments.size(), 3u);  // the riser and balusters
-  const PlaneSet ps = plane_geometry(grid, segments, R.cast<float>(), cfg.plane_geometry, cfg.output);
+  EXPECT_GE(segments.size(), min_segments);
+  return plane_geometry(grid, segments, R.cast<float>(), cfg.plane_geometry, cfg.output);
+}
+
+// The stair axis comes from the risers facing the camera, and a riser spans its flight. A flight's
+// balusters (and posts, chair legs) are vertical strips facing the camera too, a few centimetres
+// wide, turned towards it: seen beside a flight going down (no riser in view) they turned its axis
+// 14 deg, and with a riser in view they pulled it off. A 1 m riser ahead and four 4 cm balusters
+// to its left, each turned 40 deg towards the camera: the axis is the riser's.
+TEST(PerceptionPlaneGeometry, BalustersFacingTheCameraDoNotTurnTheStairAxis) {
+  const double a = 40 * M_PI / 180;
+  std::vector<Rect> rects = {{{2.5, 0, -0.5}, {-1, 0, 0}, {0, 1, 0}, 0.5, 0.085}};
+  for (int k = 0; k < 4; ++k)
+    rects.push_back({{1.3 + 0.15 * k, 0.45, -0.3}, {-std::cos(a), -std::sin(a), 0}, {-std::sin(a), std::cos(a), 0}, 0.02, 0.4});
+  const PlaneSet ps = planes_of(rects, -15, 3);  // the riser and balusters
   EXPECT_TRUE(ps.axis_from_risers);
   EXPECT_NEAR(ps.yaw_rad * 180 / M_PI, 0.0, 1.0);
+}
+
+// A flight's risers are parallel planes a tread apart, and none is taller than a rise. Walking 35 deg
+// off a flight's axis, its side wall faces the camera at 55 deg, within the angle that lets a plane
+// give the axis, and is the biggest plane in view: it gave the axis (50 deg), the risers were no
+// risers for it, and no step was found in any frame. Three risers 0.28 m apart and a 2 m wall:
+// the axis is the risers'.
+TEST(PerceptionPlaneGeometry, ASideWallSeenObliquelyDoesNotTurnTheStairAxis) {
+  const double a = 35 * M_PI / 180;
+  const Eigen::Vector3d axis(std::cos(a), std::sin(a), 0), across(-std::sin(a), std::cos(a), 0);
+  std::vector<Rect> rects;
+  for (int k = 0; k < 3; ++k)
+    rects.push_back({(1.6 + 0.28 * k) * axis + Eigen::Vector3d(0, 0, -0.915 + 0.17 * k), -axis, across, 0.5, 0.085});
+  // The wall along the flight's right side, facing across it.
+  rects.push_back({1.9 * axis - 0.65 * across + Eigen::Vector3d(0, 0, 0.0), across, axis, 1.5, 1.0});
+  const PlaneSet ps = planes_of(rects, -30, 4);
+  EXPECT_TRUE(ps.axis_from_riser_family);
+  EXPECT_NEAR(ps.yaw_rad * 180 / M_PI, 35.0, 1.0);
 }
 
 // A surface shows only its front. A patch 0.2 m above a robot's camera whose
