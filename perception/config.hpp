@@ -377,6 +377,9 @@ struct PlaneGeometryConfig {
   float edge_axis_min_change_deg = 0.5f;  // deg; with none, the nosings' depth-jump lines give it (looking down a
                                           // flight at an angle): a smaller turn keeps the first pass (< 1 cm per m)
   float merge_bin_m = 0.05f;         // m; height/depth histogram bin
+  float tread_split_min_seen_fraction = 0.5f;  // of their common width: a lower surface seen across this much
+                                               // between two pieces at one height keeps them apart (nothing is
+                                               // seen through a tread; a cell or two at their edges is noise)
   float extent_percentile = 0.02f;   // fraction trimmed at each end of an extent
   float view_edge_band_m = 0.02f;    // m; cells this close to a plane's top (bottom) height are its top
                                      // (bottom) row: in the grid's margin, the plane may go on out of view
@@ -392,6 +395,7 @@ struct PlaneGeometryConfig {
     v("axis_riser_min_spacing_m", axis_riser_min_spacing_m, 0.0f, 10.0f);
     v("edge_axis_min_change_deg", edge_axis_min_change_deg, 0.0f, 45.0f);
     v("merge_bin_m", merge_bin_m, 0.001f, 1.0f);
+    v("tread_split_min_seen_fraction", tread_split_min_seen_fraction, 0.0f, 1.0f);
     v("extent_percentile", extent_percentile, 0.0f, 0.49f);
     v("view_edge_band_m", view_edge_band_m, 0.0f, 1.0f);
   }

@@ -54,6 +54,7 @@ struct Group {
   float key = 0;                                    // height or depth along the normal, m
   int support = 0;
   PlaneKind kind = PlaneKind::Other;
+  float s_lo = 0, s_hi = 0, t_lo = 0, t_hi = 0;      // treads: extent along and across the axis, m
 };
 
 // Buffers of trimmed_range, reused across calls.
@@ -98,23 +99,28 @@ std::pair<float, float> trimmed_range(const std::vector<float>& v, float lo, flo
   return {x.lo[ranks[0] - below[0]], x.hi[ranks[1] - below[1]]};
 }
 
-// Groups whose keys share a bin merge; then each group merges at most once with
-// a group of the neighbouring bin whose key is closer than half a bin.
-std::vector<Group> histogram_merge(std::vector<Group> items, float bin) {
+// Groups whose keys share a bin merge where `joinable` lets them; then each group merges at most
+// once with a group of the neighbouring bin whose key is closer than half a bin.
+template <class Joinable>
+std::vector<Group> histogram_merge(std::vector<Group> items, float bin, Joinable joinable) {
   std::sort(items.begin(), items.end(), [](const Group& a, const Group& b) { return a.key < b.key; });
   std::vector<Group> out;
   std::vector<long> bins;
   std::vector<uint8_t> crossed;
   for (Group& g : items) {
     const long b = std::lround(std::floor(g.key / bin));
-    bool merge = !out.empty() && bins.back() == b;
-    if (!merge && !out.empty() && bins.back() == b - 1 && !crossed.back() &&
-        std::abs(out.back().key - g.key) < 0.5f * bin) {
-      merge = true;
+    long target = -1;  // a group of this bin it joins, the latest first
+    for (long k = static_cast<long>(out.size()) - 1; k >= 0 && bins[k] == b && target < 0; --k)
+      if (joinable(out[k], g)) target = k;
+    if (target < 0 && !out.empty() && bins.back() == b - 1 && !crossed.back() &&
+        std::abs(out.back().key - g.key) < 0.5f * bin && joinable(out.back(), g)) {
+      target = static_cast<long>(out.size()) - 1;
       crossed.back() = 1;
     }
-    if (merge) {
-      Group& o = out.back();
+    if (target >= 0) {
+      Group& o = out[static_cast<size_t>(target)];
+      o.s_lo = std::min(o.s_lo, g.s_lo), o.s_hi = std::max(o.s_hi, g.s_hi);
+      o.t_lo = std::min(o.t_lo, g.t_lo), o.t_hi = std::max(o.t_hi, g.t_hi);
       o.key = (o.key * o.support + g.key * g.support) / static_cast<float>(o.support + g.support);
       o.normal += g.normal;
       o.support += g.support;
@@ -244,12 +250,47 @@ Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f&
 // Merging: treads by height; vertical planes per normal direction (parallel
 // within cfg.parallel_deg) by depth along it, the ones facing the camera along
 // the axis become risers. Treads and risers first, then by support; capped.
-std::vector<Group> merge(Classified c, const std::vector<Segment>& segments, const Eigen::Matrix3f& R,
-                         const PlaneGeometryConfig& cfg, int max_planes) {
-  std::vector<Group> all = histogram_merge(std::move(c.horizontal), cfg.merge_bin_m);
+std::vector<Group> merge(Classified c, const NormalGrid& g, const std::vector<Segment>& segments,
+                         const Eigen::Matrix3f& R, const PlaneGeometryConfig& cfg, int max_planes) {
+  const float cy = std::cos(c.yaw_rad), sy = std::sin(c.yaw_rad);
+  // Each tread piece's extent along and across the axis, over its cells.
+  const Eigen::Vector3f along(cy, sy, 0.0f), across(-sy, cy, 0.0f);
+  for (Group& grp : c.horizontal) {
+    grp.s_lo = grp.t_lo = std::numeric_limits<float>::infinity();
+    grp.s_hi = grp.t_hi = -std::numeric_limits<float>::infinity();
+    for (int cell : segments[grp.segs[0]].cells) {
+      const Eigen::Vector3f q = R * g.points[cell];
+      const float sq = q.dot(along), tq = q.dot(across);
+      grp.s_lo = std::min(grp.s_lo, sq), grp.s_hi = std::max(grp.s_hi, sq);
+      grp.t_lo = std::min(grp.t_lo, tq), grp.t_hi = std::max(grp.t_hi, tq);
+    }
+  }
+  // Pieces at one height are one surface unless a lower one is seen between them along the axis,
+  // across at least tread_split_min_seen_fraction of their common width: nothing is seen through a
+  // surface (a box's top before a flight, at its first tread's height, made one 2.1 m "landing" of
+  // both, and the first step was lost with 8 false model steps).
+  const std::vector<Group> pieces = c.horizontal;
+  auto joinable = [&](const Group& a, const Group& b) {
+    const float gap_lo = std::min(a.s_hi, b.s_hi), gap_hi = std::max(a.s_lo, b.s_lo);
+    if (gap_lo >= gap_hi) return true;  // they overlap along the axis
+    float t0 = std::max(a.t_lo, b.t_lo), t1 = std::min(a.t_hi, b.t_hi);
+    if (t1 <= t0) t0 = std::min(a.t_lo, b.t_lo), t1 = std::max(a.t_hi, b.t_hi);  // side by side: the whole span
+    const float below = std::min(a.key, b.key) - cfg.merge_bin_m;
+    for (const Group& l : pieces) {
+      if (l.key >= below || l.s_hi <= gap_lo || l.s_lo >= gap_hi || l.t_hi <= t0 || l.t_lo >= t1) continue;
+      float lo = std::numeric_limits<float>::infinity(), hi = -lo;  // its cells' lateral span in the strip between
+      for (int cell : segments[l.segs[0]].cells) {
+        const Eigen::Vector3f q = R * g.points[cell];
+        const float sq = q.dot(along), tq = q.dot(across);
+        if (sq > gap_lo && sq < gap_hi && tq > t0 && tq < t1) lo = std::min(lo, tq), hi = std::max(hi, tq);
+      }
+      if (hi - lo >= cfg.tread_split_min_seen_fraction * (t1 - t0)) return false;
+    }
+    return true;
+  };
+  std::vector<Group> all = histogram_merge(std::move(c.horizontal), cfg.merge_bin_m, joinable);
   for (Group& grp : all) grp.kind = PlaneKind::Tread;
   const float cos_par = std::cos(cfg.parallel_deg * kDeg), cos_riser = std::cos(cfg.vertical_tol_deg * kDeg);
-  const float cy = std::cos(c.yaw_rad), sy = std::sin(c.yaw_rad);
   std::vector<uint8_t> used(c.vertical.size(), 0);
   for (size_t i = 0; i < c.vertical.size(); ++i) {
     if (used[i]) continue;
@@ -262,7 +303,7 @@ std::vector<Group> merge(Classified c, const std::vector<Segment>& segments, con
       v.key = -ni.dot(R * segments[v.segs[0]].centroid);  // distance of the plane from the camera along its normal
       family.push_back(std::move(v));
     }
-    for (Group& m : histogram_merge(std::move(family), cfg.merge_bin_m)) {
+    for (Group& m : histogram_merge(std::move(family), cfg.merge_bin_m, [](const Group&, const Group&) { return true; })) {
       const Eigen::Vector3f n = m.normal.normalized();
       m.kind = (n.x() * cy + n.y() * sy) < -cos_riser ? PlaneKind::Riser : PlaneKind::Other;
       all.push_back(std::move(m));
@@ -341,7 +382,7 @@ PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segment
   out.tall_facing_yaw_rad = classified.tall_yaw_rad;
   ExtentScratch scratch;
   std::vector<int> cells;
-  for (const Group& grp : merge(std::move(classified), segments, R, cfg, caps.max_planes)) {
+  for (const Group& grp : merge(std::move(classified), g, segments, R, cfg, caps.max_planes)) {
     cells.clear();
     for (int si : grp.segs) cells.insert(cells.end(), segments[si].cells.begin(), segments[si].cells.end());
     Plane p;

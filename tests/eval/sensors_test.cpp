@@ -127,7 +127,13 @@ INSTANTIATE_TEST_SUITE_P(Sim, SensorAccuracy,
                              // put it a step back four frames in a row and the velocity then carried it up
                              // the stair a step a frame while it went down (34 false model steps before).
                              Walk{"mast_down_kinect1", "--preset nosing --direction down --carrier robot --height 1.1 "
-                                  "--pitch -45 --sensor kinect1", 7}),
+                                  "--pitch -45 --sensor kinect1", 7},
+                             // A randomised walk (seed 81 --presets --wide, 11): a box's top before the flight,
+                             // at its first tread's height, made one 2.1 m "landing" with that tread (the
+                             // floor seen between them): the first step was lost, 8 false model steps.
+                             Walk{"box_before_flight_kinect2", "--preset cluttered --direction up --sensor kinect2 "
+                                  "--carrier handheld --height 1.49 --pitch -22.2 --roll 3.3 --lateral 0.01 "
+                                  "--yaw -26.7", 9867}),
                          kName);
 
 }  // namespace
