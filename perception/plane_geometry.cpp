@@ -138,7 +138,8 @@ std::vector<Group> histogram_merge(std::vector<Group> items, float bin, Joinable
 // axis from the vertical ones facing the camera (axis_of) that are as wide
 // as a tread (a flight's balusters, each a strip facing the camera, turned a descent's axis 14
 // degrees and the tracker then misplaced the camera by up to 60 cm for 13 s; a person's body is
-// strips of 0.2-0.3 m).
+// strips of 0.2-0.3 m) and no taller than a rise; the taller ones' axis apart (walls, for the
+// pipeline to fall back on).
 struct Classified {
   std::vector<Group> horizontal, vertical, other;
   float yaw_rad = 0.0f;
@@ -146,17 +147,22 @@ struct Classified {
   std::optional<float> tall_yaw_rad;
 };
 
-// How wide a vertical segment is: its cells' spread along its horizontal in-plane direction, as
-// the width of an even strip with that variance (12 sigma^2 = width^2).
+// A segment's size along the unit direction `d` (gravity frame): its cells' spread along d, as the
+// size of an even strip with that variance (12 sigma^2 = size^2).
+float size_along_m(const Segment& s, const Eigen::Matrix3f& R, const Eigen::Vector3f& d) {
+  float var = 0.0f;
+  for (int k = 0; k < 2; ++k) {
+    const float a = (R * s.axis[k]).dot(d);
+    var += s.spread_m2[k] * a * a;
+  }
+  return std::sqrt(12.0f * var);
+}
+
+// How wide a vertical segment is: its size along its horizontal in-plane direction.
 float horizontal_width_m(const Segment& s, const Eigen::Matrix3f& R) {
   const Eigen::Vector3f h = Eigen::Vector3f::UnitZ().cross(R * s.normal);
   if (h.norm() < 1e-6f) return 0.0f;
-  float var = 0.0f;
-  for (int k = 0; k < 2; ++k) {
-    const float d = (R * s.axis[k]).dot(h.normalized());
-    var += s.spread_m2[k] * d * d;
-  }
-  return std::sqrt(12.0f * var);
+  return size_along_m(s, R, h.normalized());
 }
 
 // A vertical plane facing the camera, wide enough to stand for the stair's axis.
@@ -200,16 +206,6 @@ std::optional<Axis> axis_of(const std::vector<Facing>& facing, float parallel_de
   return best_support > 0 ? Axis{best, true} : Axis{all, false};
 }
 
-// How tall a vertical segment is: its cells' spread along up, as the height of an even strip.
-float height_m(const Segment& s, const Eigen::Matrix3f& R) {
-  float var = 0.0f;
-  for (int k = 0; k < 2; ++k) {
-    const float d = (R * s.axis[k]).z();
-    var += s.spread_m2[k] * d * d;
-  }
-  return std::sqrt(12.0f * var);
-}
-
 Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f& R, const PlaneGeometryConfig& cfg) {
   const float cos_h = std::cos(cfg.horizontal_tol_deg * kDeg), sin_v = std::sin(cfg.vertical_tol_deg * kDeg);
   const float cos_facing = std::cos(cfg.axis_riser_max_deg * kDeg);
@@ -231,7 +227,8 @@ Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f&
     } else if (std::abs(n.z()) < sin_v) {
       if (n.x() < -cos_facing && horizontal_width_m(s, R) >= cfg.axis_riser_min_width_m) {
         const Eigen::Vector2f dir = -n.head<2>().normalized();
-        (height_m(s, R) <= cfg.axis_riser_max_height_m ? facing : tall).push_back({dir, dir.dot(c.head<2>()), grp.support});
+        const bool low = size_along_m(s, R, Eigen::Vector3f::UnitZ()) <= cfg.axis_riser_max_height_m;
+        (low ? facing : tall).push_back({dir, dir.dot(c.head<2>()), grp.support});
       }
       out.vertical.push_back(std::move(grp));
     } else {
