@@ -143,7 +143,7 @@ std::vector<Group> histogram_merge(std::vector<Group> items, float bin, Joinable
 struct Classified {
   std::vector<Group> horizontal, vertical, other;
   float yaw_rad = 0.0f;
-  bool axis_from_risers = false, axis_from_riser_family = false;
+  bool axis_from_risers = false;
   std::optional<float> tall_yaw_rad;
 };
 
@@ -178,12 +178,8 @@ struct Facing {
 // wall or a cabinet front seen at an angle beside it does not pull it (a walker 35 deg off the
 // flight's axis saw the side wall as the biggest plane facing it: no riser was taken for one, and no
 // step was found in any frame). Without such a family, all of them.
-struct Axis {
-  Eigen::Vector2f dir;  // support-weighted sum of the planes' directions
-  bool family;          // from a family of parallel planes a tread apart
-};
-
-std::optional<Axis> axis_of(const std::vector<Facing>& facing, float parallel_deg, float min_spacing_m) {
+// The support-weighted sum of the chosen planes' directions; none without a plane.
+std::optional<Eigen::Vector2f> axis_of(const std::vector<Facing>& facing, float parallel_deg, float min_spacing_m) {
   if (facing.empty()) return std::nullopt;
   const float cos_par = std::cos(parallel_deg * kDeg);
   Eigen::Vector2f all = Eigen::Vector2f::Zero(), best = Eigen::Vector2f::Zero();
@@ -203,7 +199,7 @@ std::optional<Axis> axis_of(const std::vector<Facing>& facing, float parallel_de
     const auto [lo, hi] = std::minmax_element(offsets.begin(), offsets.end());
     if (*hi - *lo >= min_spacing_m && support > best_support) best = sum, best_support = support;
   }
-  return best_support > 0 ? Axis{best, true} : Axis{all, false};
+  return best_support > 0 ? best : all;
 }
 
 Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f& R, const PlaneGeometryConfig& cfg) {
@@ -237,10 +233,9 @@ Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f&
   }
   const auto axis = axis_of(facing, cfg.parallel_deg, cfg.axis_riser_min_spacing_m);
   out.axis_from_risers = axis.has_value();
-  out.axis_from_riser_family = axis && axis->family;
-  out.yaw_rad = axis ? std::atan2(axis->dir.y(), axis->dir.x()) : 0.0f;
+  out.yaw_rad = axis ? std::atan2(axis->y(), axis->x()) : 0.0f;
   if (const auto wall = axis_of(tall, cfg.parallel_deg, cfg.axis_riser_min_spacing_m))
-    out.tall_yaw_rad = std::atan2(wall->dir.y(), wall->dir.x());
+    out.tall_yaw_rad = std::atan2(wall->y(), wall->x());
   return out;
 }
 
@@ -250,14 +245,18 @@ Classified classify(const std::vector<Segment>& segments, const Eigen::Matrix3f&
 std::vector<Group> merge(Classified c, const NormalGrid& g, const std::vector<Segment>& segments,
                          const Eigen::Matrix3f& R, const PlaneGeometryConfig& cfg, int max_planes) {
   const float cy = std::cos(c.yaw_rad), sy = std::sin(c.yaw_rad);
-  // Each tread piece's extent along and across the axis, over its cells.
+  // Each tread piece's extent along (s) and across (t) the axis, over its cells.
   const Eigen::Vector3f along(cy, sy, 0.0f), across(-sy, cy, 0.0f);
+  auto st = [&](int cell) {
+    const Eigen::Vector3f q = R * g.points[cell];
+    return Eigen::Vector2f(q.dot(along), q.dot(across));
+  };
   for (Group& grp : c.horizontal) {
     grp.s_lo = grp.t_lo = std::numeric_limits<float>::infinity();
     grp.s_hi = grp.t_hi = -std::numeric_limits<float>::infinity();
     for (int cell : segments[grp.segs[0]].cells) {
-      const Eigen::Vector3f q = R * g.points[cell];
-      const float sq = q.dot(along), tq = q.dot(across);
+      const Eigen::Vector2f p = st(cell);
+      const float sq = p.x(), tq = p.y();
       grp.s_lo = std::min(grp.s_lo, sq), grp.s_hi = std::max(grp.s_hi, sq);
       grp.t_lo = std::min(grp.t_lo, tq), grp.t_hi = std::max(grp.t_hi, tq);
     }
@@ -277,8 +276,8 @@ std::vector<Group> merge(Classified c, const NormalGrid& g, const std::vector<Se
       if (l.key >= below || l.s_hi <= gap_lo || l.s_lo >= gap_hi || l.t_hi <= t0 || l.t_lo >= t1) continue;
       float lo = std::numeric_limits<float>::infinity(), hi = -lo;  // its cells' lateral span in the strip between
       for (int cell : segments[l.segs[0]].cells) {
-        const Eigen::Vector3f q = R * g.points[cell];
-        const float sq = q.dot(along), tq = q.dot(across);
+        const Eigen::Vector2f p = st(cell);
+        const float sq = p.x(), tq = p.y();
         if (sq > gap_lo && sq < gap_hi && tq > t0 && tq < t1) lo = std::min(lo, tq), hi = std::max(hi, tq);
       }
       if (hi - lo >= cfg.tread_split_min_seen_fraction * (t1 - t0)) return false;
@@ -370,12 +369,10 @@ PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Ei
 PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segments, const Eigen::Matrix3f& R,
                         const PlaneGeometryConfig& cfg, const OutputConfig& caps, std::optional<float> axis_yaw_rad) {
   Classified classified = classify(segments, R, cfg);
-  if (axis_yaw_rad)
-    classified.yaw_rad = *axis_yaw_rad, classified.axis_from_risers = classified.axis_from_riser_family = false;
+  if (axis_yaw_rad) classified.yaw_rad = *axis_yaw_rad, classified.axis_from_risers = false;
   PlaneSet out;
   out.yaw_rad = classified.yaw_rad;
   out.axis_from_risers = classified.axis_from_risers;
-  out.axis_from_riser_family = classified.axis_from_riser_family;
   out.tall_facing_yaw_rad = classified.tall_yaw_rad;
   ExtentScratch scratch;
   std::vector<int> cells;

@@ -24,7 +24,6 @@ struct PlaneSet {
   std::vector<PlaneExtent> extents;  // same order
   float yaw_rad = 0;                 // stair axis relative to camera forward
   bool axis_from_risers = false;     // yaw_rad from vertical planes facing the camera (else given, or 0)
-  bool axis_from_riser_family = false;  // ... from parallel ones a tread apart, a flight's risers (not a wall)
   // The axis the planes facing the camera that are taller than a rise give (walls, an end wall, a
   // cabinet, a person): what the pipeline falls back on where neither risers nor nosings give one.
   std::optional<float> tall_facing_yaw_rad;

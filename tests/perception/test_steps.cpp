@@ -567,7 +567,7 @@ TEST(PerceptionPlaneGeometry, ASideWallSeenObliquelyDoesNotTurnTheStairAxis) {
   // The wall along the flight's right side, facing across it.
   rects.push_back({1.9 * axis - 0.65 * across + Eigen::Vector3d(0, 0, 0.0), across, axis, 1.5, 1.0});
   const PlaneSet ps = planes_of(rects, -30, 4);
-  EXPECT_TRUE(ps.axis_from_riser_family);
+  EXPECT_TRUE(ps.axis_from_risers);  // the risers' 35 deg below, not the wall's 55
   EXPECT_NEAR(ps.yaw_rad * 180 / M_PI, 35.0, 1.0);
 }
 
