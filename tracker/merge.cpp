@@ -112,6 +112,11 @@ bool agrees_where_it_overlaps(const StairMap& map, const std::vector<ObservedSte
   return true;
 }
 
+const ObservedStep& lowest_step(const std::vector<ObservedStep>& observed) {
+  return *std::min_element(observed.begin(), observed.end(),
+                           [](const ObservedStep& a, const ObservedStep& b) { return a.nosing_m.z() < b.nosing_m.z(); });
+}
+
 std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& pose) {
   std::vector<ObservedStep> out;
   const Eigen::Isometry3d to_model = pose.isometry();

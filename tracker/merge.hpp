@@ -30,6 +30,8 @@ struct ObservedStep {
 };
 
 std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& pose);
+// The one with the lowest nosing; `observed` must not be empty.
+const ObservedStep& lowest_step(const std::vector<ObservedStep>& observed);
 
 // Whether every observed step within the model's extent (along x, half a
 // tread beyond its ends) matches a model step: steps placed by a prior alone

@@ -358,6 +358,10 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
     relocalising = true;
     reg = relocalise(input, map_, start_pose, config_.relocalisation, config_.registration, config_.stair, max_shift_m);
   }
+  if (const auto anchored = on_first_step(obs, input, reg)) {
+    reg = *anchored;
+    relocalising = true;
+  }
   // Entirely beyond the model (the next flight seen from a landing): nothing
   // to register against, so the motion prior places it while it is fresh.
   // Or only the level it stands on overlaps the model (that landing, its near part seen before):
@@ -462,16 +466,52 @@ void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_val
 void Tracker::note_floor(const Observation& obs, const std::vector<ObservedStep>& observed) {
   if (map_.empty() || observed.empty()) return;
   for (size_t i = 1; i < map_.steps.size(); ++i) map_.steps[i].on_seen_floor = false;  // a step went in below
+  if (!floor_before_lowest_step(obs)) return;
+  if (matches(map_, lowest_step(observed), map_.steps.front(), config_.merge, config_.stair))
+    map_.steps.front().on_seen_floor = true;
+}
+
+bool Tracker::floor_before_lowest_step(const Observation& obs) const {
   const int foot = foot_plane(obs, config_.registration);
-  if (foot < 0 || obs.planes[foot].extent_m <= config_.stair.landing_min_depth_m) return;
+  if (foot < 0 || obs.planes[foot].extent_m <= config_.stair.landing_min_depth_m) return false;
   const double below = obs.planes[foot].centroid.z() -
                        config_.registration.foot_max_offset_rise_fraction * typical_riser_m(map_, config_.stair);
   for (const Plane& p : obs.planes)
-    if ((p.kind == PlaneKind::Tread || p.kind == PlaneKind::Landing) && p.centroid.z() < below) return;
-  const ObservedStep& lowest = *std::min_element(observed.begin(), observed.end(), [](const ObservedStep& a, const ObservedStep& b) {
-    return a.nosing_m.z() < b.nosing_m.z();
-  });
-  if (matches(map_, lowest, map_.steps.front(), config_.merge, config_.stair)) map_.steps.front().on_seen_floor = true;
+    if ((p.kind == PlaneKind::Tread || p.kind == PlaneKind::Landing) && p.centroid.z() < below) return false;
+  return true;
+}
+
+// A flight has one first step. Where the model's stands on a floor seen before it (confirmed) and this
+// frame sees the floor before its own lowest step too, the two are that step: a registration that put
+// them whole steps apart slid along the flight's periodic risers and nosings, its prior off by nearly a
+// step (a robot's camera on a 0.9 m mast swings 20 cm in a frame as the body rocks over a nosing, more
+// than the prior's uncertainty lets the whole-step search try; every frame after merged a step low and
+// the model grew 2 false steps below its first). Registered again from the prior shifted by those
+// steps; kept where it agrees with the model at least as well and brings the two onto each other.
+std::optional<Registration> Tracker::on_first_step(const Observation& obs, const RegistrationInput& input,
+                                                   const Registration& reg) const {
+  if (map_.empty() || obs.steps.empty()) return std::nullopt;
+  const MapStep& first = map_.steps.front();
+  if (!first.on_seen_floor || first.confirmations < config_.confirmation.min_confirmations ||
+      !floor_before_lowest_step(obs))
+    return std::nullopt;
+  const double tread = typical_tread_m(map_, config_.stair), rise = typical_riser_m(map_, config_.stair);
+  auto steps_off = [&](const Pose4& pose) {
+    const std::vector<ObservedStep> observed = observed_steps(obs, pose);
+    const ObservedStep& lowest = lowest_step(observed);
+    const long along = std::lround((lowest.x() - first.x()) / tread), up = std::lround((lowest.z() - first.z()) / rise);
+    return along == up ? along : 0L;  // whole steps along the flight (else a level, not a step, apart)
+  };
+  const long k = steps_off(reg.pose);
+  if (k == 0 || std::abs(k) > config_.relocalisation.step_range) return std::nullopt;
+  Pose4 start = reg.pose;
+  start.t_m -= static_cast<double>(k) * Eigen::Vector3d(tread, 0.0, rise);
+  const Registration shifted = register_to_map(input, map_, start, config_.registration, config_.stair);
+  const double w = config_.registration.nosing_weight_points;
+  if (steps_off(shifted.pose) != 0 || shifted.inlier_ratio < config_.motion.min_inlier_ratio ||
+      shifted.inliers + w * shifted.nosing_inliers < reg.inliers + w * reg.nosing_inliers)
+    return std::nullopt;
+  return shifted;
 }
 
 }  // namespace stairs

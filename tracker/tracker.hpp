@@ -51,6 +51,9 @@ class Tracker {
   void accept(const Observation& obs, const Pose4& pose, bool x_measured);
   // Marks the model's first step as standing on a seen floor (tracker.cpp).
   void note_floor(const Observation& obs, const std::vector<ObservedStep>& observed);
+  bool floor_before_lowest_step(const Observation& obs) const;
+  std::optional<Registration> on_first_step(const Observation& obs, const RegistrationInput& input,
+                                            const Registration& reg) const;
   // The end wall in view (end_wall.hpp), seen from `pose`, which the prior may have carried this far off.
   void note_end_wall(const Observation& obs, const Pose4& pose, double prior_uncertainty_m);
   Pose4 with_observed_height(const Observation& obs, Pose4 pose) const;

@@ -17,6 +17,7 @@ struct StairGeometry {
   std::vector<double> riser_m, tread_m;  // per step, bottom to top (last tread = top landing)
   double width_m = 1.0;
   bool end_wall = false;  // a wall stands where the top landing ends (its tread depth beyond its nosing)
+  double floor_depth_m = 0.0;  // m; the floor before the first riser as deep as this is reported (0: none)
   // Nosing of step i in the stair frame: (x, z).
   double nosing_x(size_t i) const {
     double x = 0;
@@ -117,6 +118,20 @@ class ObservationMaker {
     }
     // Nearest first; perception reports no stair below two steps, and then no plane of one.
     if (descending) std::reverse(steps.begin(), steps.end());
+    // The floor before the first riser, a plane no step owns; going down, its near part is hidden
+    // behind the first step's nosing.
+    if (g_.floor_depth_m > 0.0 && !steps.empty()) {
+      const double X = g_.nosing_x(0), Z = g_.nosing_z(0), ahead = std::abs(X - cam.position_m.x());
+      const bool in_front = descending ? X < cam.position_m.x() - 0.3 : X > cam.position_m.x() + 0.5;
+      const double near = descending ? X - (cam.position_m.x() - X) * Z / (cam.position_m.z() - Z) : X;
+      const double half_fov = ahead * std::tan(28 * M_PI / 180);
+      const double y_lo = std::max(-0.5 * g_.width_m, cam.position_m.y() - half_fov);
+      const double y_hi = std::min(0.5 * g_.width_m, cam.position_m.y() + half_fov);
+      if (in_front && ahead < 3.5 && near - (X - g_.floor_depth_m) > 0.05 && y_hi - y_lo > 0.2)
+        obs.planes.push_back(plane(PlaneKind::Landing, Eigen::Vector3d(X - g_.floor_depth_m, y_hi, 0.0),
+                                   Eigen::Vector3d(near - (X - g_.floor_depth_m), 0, 0), y_hi - y_lo, cam.position_m,
+                                   to_cam));
+    }
     if (steps.size() < 2) {
       obs.planes.clear();
       steps.clear();
