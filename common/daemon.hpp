@@ -56,31 +56,38 @@ bool stop_requested();
 void request_stop();
 
 // Keeps only the newest item: a slow consumer never makes a queue grow; each
-// overwritten item is counted as dropped.
+// overwritten item is counted as dropped. Items are swapped, not moved, so their
+// buffers (a depth image's 600 KB) circulate between the producer, the slot and the
+// consumer: nothing is allocated per item in steady state.
 template <class T>
 class LatestSlot {
  public:
-  // Returns true if an unconsumed item was overwritten (dropped).
-  bool put(T item) {
+  // Swaps `item` into the slot; `item` gets the slot's previous one (a dropped item, or the
+  // consumer's last) to fill next. Returns true if an unconsumed item was overwritten (dropped).
+  bool put(T& item) {
     std::lock_guard<std::mutex> lock(m_);
-    const bool dropped = item_.has_value();
-    item_ = std::move(item);
+    const bool dropped = full_;
+    std::swap(item_, item);
+    full_ = true;
     cv_.notify_one();
     return dropped;
   }
-  // Waits up to timeout for an item.
-  std::optional<T> take(std::chrono::milliseconds timeout) {
+  // Waits up to timeout for an item and swaps it into `out` (the slot keeps out's old one for the
+  // producer). False if none came.
+  bool take(T& out, std::chrono::milliseconds timeout) {
     std::unique_lock<std::mutex> lock(m_);
-    cv_.wait_for(lock, timeout, [&] { return item_.has_value(); });
-    std::optional<T> out = std::move(item_);
-    item_.reset();
-    return out;
+    cv_.wait_for(lock, timeout, [&] { return full_; });
+    if (!full_) return false;
+    std::swap(item_, out);
+    full_ = false;
+    return true;
   }
 
  private:
   std::mutex m_;
   std::condition_variable cv_;
-  std::optional<T> item_;
+  T item_{};
+  bool full_ = false;
 };
 
 // Counters of one daemon; tick() prints a status line once a second when stderr

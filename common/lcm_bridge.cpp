@@ -221,9 +221,9 @@ bool from_lcm(const depth_frame_t& m, DepthImage& img, std::string& error) {
     }
     std::memcpy(img.depth.data(), m.data.data(), expected);
   } else if (m.encoding == depth_frame_t::ENCODING_ZLIB_U16LE) {
-    std::vector<uint8_t> raw;
-    if (!zlib_decompress(m.data.data(), m.data.size(), expected, raw, error)) return false;
-    std::memcpy(img.depth.data(), raw.data(), expected);
+    // Little-endian bytes straight into the image (the raw case's memcpy assumes the same host order).
+    if (!zlib_decompress(m.data.data(), m.data.size(), reinterpret_cast<uint8_t*>(img.depth.data()), expected, error))
+      return false;
   } else {
     error = "unknown depth encoding " + std::to_string(m.encoding);
     return false;

@@ -15,9 +15,7 @@ std::vector<uint8_t> zlib_compress(const uint8_t* data, size_t size, int level) 
   return out;
 }
 
-bool zlib_decompress(const uint8_t* data, size_t size, size_t expected_size,
-                     std::vector<uint8_t>& out, std::string& error) {
-  out.resize(expected_size);
+bool zlib_decompress(const uint8_t* data, size_t size, uint8_t* out, size_t expected_size, std::string& error) {
   z_stream zs{};
   if (inflateInit(&zs) != Z_OK) {
     error = "zlib inflateInit failed";
@@ -25,7 +23,7 @@ bool zlib_decompress(const uint8_t* data, size_t size, size_t expected_size,
   }
   zs.next_in = const_cast<Bytef*>(data);
   zs.avail_in = static_cast<uInt>(size);
-  zs.next_out = out.data();
+  zs.next_out = out;
   zs.avail_out = static_cast<uInt>(expected_size);
   const int rc = inflate(&zs, Z_FINISH);
   const size_t produced = expected_size - zs.avail_out;

@@ -54,16 +54,19 @@ struct Receiver {
     imu->push(stairs::turned(s, imu_to_camera));
   }
 
+  // Reused frame to frame: the message's data and the image's depth keep their buffers (a fresh
+  // 600 KB image and its inflate buffer cost more than perception itself, in page faults).
+  stairs::depth_frame_t msg;
+  stairs::DepthImage img;
+
   void on_depth(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     status->received();
-    stairs::depth_frame_t msg;
-    stairs::DepthImage img;
     std::string error;
     if (!stairs::decode_message(rbuf->data, rbuf->data_size, msg, error) || !stairs::from_lcm(msg, img, error)) {
       status->invalid(error);
       return;
     }
-    if (slot->put(std::move(img))) status->dropped("worker busy: older depth frame replaced");
+    if (slot->put(img)) status->dropped("worker busy: older depth frame replaced");
   }
 };
 
@@ -105,18 +108,18 @@ int main(int argc, char** argv) {
   stairs::StatusReporter status(&lcm, "stairs-perception", opts.get("status-channel"), opts.flag("verbose"));
   stairs::LatestSlot<stairs::DepthImage> slot;
   ImuQueue imu;
-  Receiver receiver{&slot, &status, &imu, stairs::imu_to_camera(config.imu)};
+  Receiver receiver{&slot, &status, &imu, stairs::imu_to_camera(config.imu), {}, {}};
   lcm.subscribe(opts.get("depth-channel"), &Receiver::on_depth, &receiver);
   lcm.subscribe(opts.get("imu-channel"), &Receiver::on_imu, &receiver);
 
   const std::string out_channel = opts.get("observation-channel");
   std::thread worker([&] {
     stairs::Pipeline pipeline(config);
+    stairs::DepthImage frame;
     while (!stairs::stop_requested()) {
-      auto frame = slot.take(std::chrono::milliseconds(100));
-      if (!frame) continue;
+      if (!slot.take(frame, std::chrono::milliseconds(100))) continue;
       for (const stairs::ImuSample& s : imu.take()) pipeline.add_imu(s);
-      const stairs::Observation obs = pipeline.process(*frame);
+      const stairs::Observation obs = pipeline.process(frame);
       const stairs::stair_observation_t msg = stairs::to_lcm(obs, stairs::now_utime());
       lcm.publish(out_channel, &msg);
       status.published(obs.latency_ms);
