@@ -20,6 +20,7 @@ void sample(const Plane& p, int n, std::vector<Eigen::Vector3d>& out) {
 struct Profile {
   std::vector<double> riser_x, riser_z_lo, riser_z_hi;
   int end_wall = -1;  // the riser face that is the model's end wall (end_wall.hpp), if any
+  double top_seen_x = 0.0;  // how far along x the top level was seen (its nosing, or its tread's far edge)
   std::vector<double> tread_z, tread_x_lo, tread_x_hi;
   std::vector<Eigen::Vector2d> nosing_xz;
 };
@@ -45,6 +46,7 @@ Profile profile(const StairMap& map, const StairPriorConfig& c) {
                                                     : std::max(s.tread_far_x_m, s.x() + tread));
     p.nosing_xz.emplace_back(s.x(), s.z());
   }
+  p.top_seen_x = std::max(map.steps.back().x(), map.steps.back().tread_far_x_m);
   // Where the top landing ends at a wall, the wall is a riser of any height standing on it.
   if (const auto wall = end_wall_x_m(map)) {
     p.end_wall = static_cast<int>(p.riser_x.size());
@@ -62,13 +64,22 @@ double outside(double v, double lo, double hi) { return std::max({0.0, lo - v, v
 // end and its lowest and highest levels: points outside lie on steps the model does not have yet.
 struct Extent {
   double x_lo, x_hi, z_lo, z_hi;
+  double next_riser_x, next_riser_z;  // a riser point beyond and above both stands on the top level
   Extent(const Profile& p, double margin)
       : x_lo(p.riser_x.front() - margin), x_hi(p.tread_x_hi.back() + margin), z_lo(p.tread_z.front() - margin),
-        z_hi(p.tread_z.back() + margin) {}
+        z_hi(p.tread_z.back() + margin),
+        next_riser_x(p.end_wall >= 0 ? std::numeric_limits<double>::infinity()
+                                     : std::max(p.nosing_xz.back().x() + margin, p.top_seen_x - margin)),
+        next_riser_z(p.tread_z.back() - margin) {}
   // A plane point: below the top and before the far end, and not before and below the first step.
   bool holds_plane_point(const Eigen::Vector3d& q) const {
     return q.x() <= x_hi && q.z() <= z_hi && (q.x() >= x_lo || q.z() >= z_lo);
   }
+  // A riser point standing on the top level where what was seen of it ends, or beyond: the next
+  // step's riser, which the model does not have yet (the top tread is taken to run a tread on, and
+  // the next riser stands just there, its foot within the model's extent). Where the top level ends
+  // at an end wall, the model knows what stands on it.
+  bool next_riser(const Eigen::Vector3d& q) const { return q.x() > next_riser_x && q.z() > next_riser_z; }
   bool holds_nosing(const Eigen::Vector3d& q) const {
     return q.x() >= x_lo && q.x() <= x_hi && q.z() >= z_lo && q.z() <= z_hi;
   }
@@ -228,7 +239,7 @@ double foot_agreement_beyond_model(const RegistrationInput& in, const StairMap& 
   const Extent extent(prof, c.accept_distance_m);
   const Eigen::Isometry3d T = pose.isometry();
   for (const auto& p : in.riser_points)
-    if (extent.holds_plane_point(T * p)) return 0.0;
+    if (extent.holds_plane_point(T * p) && !extent.next_riser(T * p)) return 0.0;
   for (const auto& p : in.nosings)
     if (extent.holds_nosing(T * p)) return 0.0;
   // The top level runs on beyond the part of it seen so far, as the level before the first riser does.
@@ -283,17 +294,24 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
   const Eigen::Vector3d& t = reg.pose.t_m;
   const Extent extent(prof, c.accept_distance_m);
   double sq = 0;
-  int riser_in = 0, tread_in = 0, riser_within = 0, tread_within = 0;
-  auto count = [&](const Eigen::Vector3d& q, double d, int& in, int& within) {
+  int riser_in = 0, tread_in = 0, riser_within = 0, tread_within = 0, riser_next = 0;
+  auto count = [&](bool held, double d, int& in, int& within) {
     if (d < c.accept_distance_m) ++in, sq += d * d;
-    if (extent.holds_plane_point(q)) ++within;
+    if (held) ++within;
   };
   for (const auto& p : risers) {
+    // The next step's riser agrees and disagrees with nothing: an ascent's frame whose only riser
+    // in view was the next one (a Kinect v2 under nosings segments few risers) had every
+    // registration rejected, and a whole-step search then fitted it onto the top step.
+    if (extent.next_riser(p + t)) {
+      ++riser_next;
+      continue;
+    }
     const Match m = nearest_riser(prof, p + t);
-    count(p + t, m.distance, riser_in, riser_within);
+    count(extent.holds_plane_point(p + t), m.distance, riser_in, riser_within);
     reg.end_wall_inliers += m.face == prof.end_wall && m.distance < c.accept_distance_m;
   }
-  for (const auto& p : treads) count(p + t, nearest_tread(prof, p + t).distance, tread_in, tread_within);
+  for (const auto& p : treads) count(extent.holds_plane_point(p + t), nearest_tread(prof, p + t).distance, tread_in, tread_within);
   int nosing_in = 0, nosing_within = 0;
   for (const auto& p : nosings) {
     const Eigen::Vector3d q = p + t;
@@ -308,7 +326,7 @@ Registration register_to_map(const RegistrationInput& in, const StairMap& map, c
   auto ratio = [](int in, int within, size_t all) {
     return all == 0 ? 1.0 : in / std::max({static_cast<double>(within), 0.25 * all, 1.0});
   };
-  const double riser_ratio = ratio(riser_in, riser_within, risers.size());
+  const double riser_ratio = ratio(riser_in, riser_within, risers.size() - static_cast<size_t>(riser_next));
   const double tread_ratio = ratio(tread_in, tread_within, treads.size());
   reg.inlier_ratio = risers.empty() && treads.empty() ? 0.0 : std::min(riser_ratio, tread_ratio);
   reg.rmse_m = reg.inliers > 0 ? std::sqrt(sq / reg.inliers) : -1.0;

@@ -186,6 +186,38 @@ TEST(TrackerMerge, ASecondNosingAtAStepsXIsNoNewStep) {
   EXPECT_EQ(merge(map, {at(0.84, 0.68)}, pose, c.merge, c.stair, c.registration.icp_min_distance_m), 1);
 }
 
+// The next step's riser stands on the model's top level with its foot inside the model's extent
+// (the top tread is taken to run a tread on, and the next riser stands just there). It agrees and
+// disagrees with nothing: a Kinect v2 ascent under nosing overhangs, the next riser the only one
+// segmented in view, had every registration rejected, and a whole-step search then fitted that
+// riser onto the top step (a step lost from the model).
+TEST(TrackerRegistration, TheNextStepsRiserIsNoDisagreement) {
+  StairMap map;
+  const Pose4 pose;
+  const TrackerConfig c;
+  std::vector<ObservedStep> steps;
+  for (int k = 0; k < 4; ++k) {
+    ObservedStep o;
+    o.nosing_m = {0.28 * k, 0.0, 0.17 * (k + 1)};
+    o.riser_x_m = 0.28 * k;
+    o.tread_z_m = 0.17 * (k + 1);
+    o.tread_far_x_m = 0.28 * (k + 1);  // each tread seen to where the next riser stands
+    steps.push_back(o);
+  }
+  for (int n = 0; n < 3; ++n) merge(map, steps, pose, c.merge, c.stair, c.registration.icp_min_distance_m);
+  ASSERT_EQ(map.steps.size(), 4u);
+  RegistrationInput in;
+  for (const ObservedStep& o : steps) in.nosings.push_back(o.nosing_m);
+  for (double y = -0.3; y <= 0.3; y += 0.05)
+    for (double z = 0.69; z < 0.85; z += 0.01) in.riser_points.emplace_back(4 * 0.28, y, z);
+  const Registration reg = register_to_map(in, map, pose, c.registration, c.stair);
+  EXPECT_GE(reg.inlier_ratio, c.motion.min_inlier_ratio);
+  EXPECT_NEAR(reg.pose.t_m.x(), 0.0, 0.01);
+  // The same riser half a tread short of there, on the part of the top tread the model saw, disagrees.
+  for (auto& q : in.riser_points) q.x() -= 0.14;
+  EXPECT_LT(register_to_map(in, map, pose, c.registration, c.stair).inlier_ratio, c.motion.min_inlier_ratio);
+}
+
 TEST(Tracker, StepsCountConfirmations) {
   const Walk r = walk_stair(kStair, true, 0.6);
   for (const auto& f : r.model.flights)
