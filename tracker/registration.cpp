@@ -249,6 +249,10 @@ double foot_agreement_beyond_model(const RegistrationInput& in, const StairMap& 
   return static_cast<double>(on) / static_cast<double>(in.foot_points.size());
 }
 
+double agreeing_points(const Registration& reg, const RegistrationConfig& c) {
+  return reg.inliers + c.nosing_weight_points * reg.nosing_inliers;
+}
+
 Registration register_to_map(const RegistrationInput& in, const StairMap& map, const Pose4& initial,
                              const RegistrationConfig& c, const StairPriorConfig& stair) {
   Registration reg;

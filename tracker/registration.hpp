@@ -70,6 +70,10 @@ struct Registration {
 double foot_agreement_beyond_model(const RegistrationInput& in, const StairMap& map, const Pose4& pose,
                                    const RegistrationConfig& c, const StairPriorConfig& stair);
 
+// How much of an observation agrees with the model at a registration's pose: its agreeing plane
+// points, each agreeing nosing counted as nosing_weight_points of them (as in the ICP).
+double agreeing_points(const Registration& reg, const RegistrationConfig& c);
+
 // Registers with yaw fixed to `initial.yaw_rad`, starting from `initial`.
 Registration register_to_map(const RegistrationInput& in, const StairMap& map, const Pose4& initial,
                              const RegistrationConfig& c, const StairPriorConfig& stair);

@@ -13,7 +13,7 @@ Registration relocalise(const RegistrationInput& in, const StairMap& map, const 
   const Eigen::Vector3d half_step = 0.5 * Eigen::Vector3d(typical_tread_m(map, stair), 0.0, typical_riser_m(map, stair));
   // A nosing counts as many points as in the ICP: going down, the nosings are all that fixes x
   // (treads agree wherever along them the camera is).
-  auto agreeing = [&](const Registration& g) { return g.inliers + registration.nosing_weight_points * g.nosing_inliers; };
+  auto agreeing = [&](const Registration& g) { return agreeing_points(g, registration); };
   // `a` beats `b` clearly: min_gain more agreeing points than b's.
   auto clearly_better = [&](const Registration& a, const Registration& b) {
     return agreeing(a) > agreeing(b) + c.min_gain * agreeing(b) + 1;

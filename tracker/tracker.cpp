@@ -507,9 +507,8 @@ std::optional<Registration> Tracker::on_first_step(const Observation& obs, const
   Pose4 start = reg.pose;
   start.t_m -= static_cast<double>(k) * Eigen::Vector3d(tread, 0.0, rise);
   const Registration shifted = register_to_map(input, map_, start, config_.registration, config_.stair);
-  const double w = config_.registration.nosing_weight_points;
   if (steps_off(shifted.pose) != 0 || shifted.inlier_ratio < config_.motion.min_inlier_ratio ||
-      shifted.inliers + w * shifted.nosing_inliers < reg.inliers + w * reg.nosing_inliers)
+      agreeing_points(shifted, config_.registration) < agreeing_points(reg, config_.registration))
     return std::nullopt;
   return shifted;
 }

@@ -51,7 +51,9 @@ class Tracker {
   void accept(const Observation& obs, const Pose4& pose, bool x_measured);
   // Marks the model's first step as standing on a seen floor (tracker.cpp).
   void note_floor(const Observation& obs, const std::vector<ObservedStep>& observed);
+  // Whether the observation sees a floor before its lowest step (deeper than any tread, nothing below).
   bool floor_before_lowest_step(const Observation& obs) const;
+  // `reg` redone from whole steps off, where it puts the observation's first step off the model's.
   std::optional<Registration> on_first_step(const Observation& obs, const RegistrationInput& input,
                                             const Registration& reg) const;
   // The end wall in view (end_wall.hpp), seen from `pose`, which the prior may have carried this far off.

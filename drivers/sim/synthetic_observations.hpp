@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace stairs::synthetic {
@@ -85,12 +86,8 @@ class ObservationMaker {
     for (size_t i = 0; i < g_.riser_m.size(); ++i) {
       const double X = g_.nosing_x(i), Z = g_.nosing_z(i), R = g_.riser_m[i], T = g_.tread_m[i];
       const double ahead = std::abs(X - cam.position_m.x());
-      const bool in_front = descending ? X < cam.position_m.x() - 0.3 : X > cam.position_m.x() + 0.5;
-      if (!in_front || ahead > 3.5 || Z > cam.position_m.z() - 0.3) continue;
-      // Lateral field of view (+-28 deg) at that distance.
-      const double half_fov = ahead * std::tan(28 * M_PI / 180);
-      const double y_lo = std::max(-0.5 * g_.width_m, cam.position_m.y() - half_fov);
-      const double y_hi = std::min(0.5 * g_.width_m, cam.position_m.y() + half_fov);
+      if (!in_front(X, cam, descending) || ahead > 3.5 || Z > cam.position_m.z() - 0.3) continue;
+      const auto [y_lo, y_hi] = seen_across(cam, ahead);
       if (y_hi - y_lo < 0.2) continue;
       Step s;
       s.nosing_m = to_g(Eigen::Vector3d(X, 0.5 * (y_lo + y_hi), Z)) + gauss3(noise_.nosing_sigma_m);
@@ -122,12 +119,9 @@ class ObservationMaker {
     // behind the first step's nosing.
     if (g_.floor_depth_m > 0.0 && !steps.empty()) {
       const double X = g_.nosing_x(0), Z = g_.nosing_z(0), ahead = std::abs(X - cam.position_m.x());
-      const bool in_front = descending ? X < cam.position_m.x() - 0.3 : X > cam.position_m.x() + 0.5;
       const double near = descending ? X - (cam.position_m.x() - X) * Z / (cam.position_m.z() - Z) : X;
-      const double half_fov = ahead * std::tan(28 * M_PI / 180);
-      const double y_lo = std::max(-0.5 * g_.width_m, cam.position_m.y() - half_fov);
-      const double y_hi = std::min(0.5 * g_.width_m, cam.position_m.y() + half_fov);
-      if (in_front && ahead < 3.5 && near - (X - g_.floor_depth_m) > 0.05 && y_hi - y_lo > 0.2)
+      const auto [y_lo, y_hi] = seen_across(cam, ahead);
+      if (in_front(X, cam, descending) && ahead < 3.5 && near - (X - g_.floor_depth_m) > 0.05 && y_hi - y_lo > 0.2)
         obs.planes.push_back(plane(PlaneKind::Landing, Eigen::Vector3d(X - g_.floor_depth_m, y_hi, 0.0),
                                    Eigen::Vector3d(near - (X - g_.floor_depth_m), 0, 0), y_hi - y_lo, cam.position_m,
                                    to_cam));
@@ -140,9 +134,7 @@ class ObservationMaker {
     if (g_.end_wall && !descending) {
       const size_t top = g_.riser_m.size() - 1;
       const double X = g_.nosing_x(top) + g_.tread_m[top], ahead = X - cam.position_m.x();
-      const double half_fov = ahead * std::tan(28 * M_PI / 180);
-      const double y_lo = std::max(-0.5 * g_.width_m, cam.position_m.y() - half_fov);
-      const double y_hi = std::min(0.5 * g_.width_m, cam.position_m.y() + half_fov);
+      const auto [y_lo, y_hi] = seen_across(cam, ahead);
       if (ahead > 0.5 && ahead < 3.5 && y_hi - y_lo > 0.2)
         obs.planes.push_back(plane(PlaneKind::Riser, Eigen::Vector3d(X, y_hi, g_.nosing_z(top)),
                                    Eigen::Vector3d(0, 0, 1.2), y_hi - y_lo, cam.position_m, to_cam));
@@ -153,6 +145,17 @@ class ObservationMaker {
   }
 
  private:
+  // Whether stair-frame x is in front of the camera far enough for a step there to be reported.
+  static bool in_front(double x, const CameraState& cam, bool descending) {
+    return descending ? x < cam.position_m.x() - 0.3 : x > cam.position_m.x() + 0.5;
+  }
+  // The part of the stair's width in the lateral field of view (+-28 deg) `ahead` metres on.
+  std::pair<double, double> seen_across(const CameraState& cam, double ahead) const {
+    const double half_fov = ahead * std::tan(28 * M_PI / 180);
+    return {std::max(-0.5 * g_.width_m, cam.position_m.y() - half_fov),
+            std::min(0.5 * g_.width_m, cam.position_m.y() + half_fov)};
+  }
+
   // Perception's gravity estimate is off by a small random tilt each frame.
   void tilt(Observation& obs, std::vector<Step>& steps) {
     const double deg = M_PI / 180;

@@ -1089,12 +1089,6 @@ TEST(Tracker, StepsFromCameraInTheGravityAlignedFrame) {
   EXPECT_TRUE(steps_from_camera(m).empty());
 }
 
-// A robot's camera on a tall mast, its body rocking over the nosings: the camera swings 10 cm
-// along the stair and back from one frame to the next, beyond what ICP reaches from a
-// constant-velocity prior. Half a step either way then fits the periodic flight as well, and the
-// start tried first (a step back) won four frames in a row: the velocity then carried the camera up
-// the stair a step a frame while it went down, and the model grew to 44 steps. Of two shifts that
-// agree alike, the one nearer the prior is taken.
 // A flight has one first step. A robot's camera on a 0.9 m mast swings 20 cm back along the stair
 // in a frame as the body rocks over a nosing, farther than the prior's uncertainty lets the
 // whole-step search try: ICP from the prior then fits the periodic flight a step off, and near the
@@ -1115,6 +1109,12 @@ TEST(Tracker, AFlightHasOneFirstStepWhereTheFloorIsSeenBeforeIt) {
   EXPECT_EQ(a.false_steps, 0) << tracker.model().status;
 }
 
+// A robot's camera on a tall mast, its body rocking over the nosings: the camera swings 10 cm
+// along the stair and back from one frame to the next, beyond what ICP reaches from a
+// constant-velocity prior. Half a step either way then fits the periodic flight as well, and the
+// start tried first (a step back) won four frames in a row: the velocity then carried the camera up
+// the stair a step a frame while it went down, and the model grew to 44 steps. Of two shifts that
+// agree alike, the one nearer the prior is taken.
 TEST(Tracker, ACameraRockingAlongTheStairIsNotCarriedAStepAFrame) {
   const StairGeometry stair = make_stair(14, 0.17, 0.28, 1.5);
   ObservationMaker maker(stair, 5);
