@@ -126,7 +126,10 @@ struct NormalsConfig {
   float min_depth_m = 0.3f;        // m; nearer ones too (below every sensor's minimum range)
   float jump_ratio = 0.05f;        // |dz| / z above which two cells are not neighbours (and
                                    // pixels of one cell not on its nearest surface)
-  float cell_min_valid_fraction = 0.5f;  // of a cell's pixels on its nearest surface, else no point
+  float cell_min_valid_fraction = 0.5f;  // of a cell's measured pixels on its nearest surface, else no
+                                         // point (flying pixels between surfaces are a few)
+  float cell_min_coverage = 0.5f;  // of a cell's pixels; it counts as measured on at least this many
+                                   // (a dark surface's dropout leaves half; a few returns make no mean)
   float cell_valid_fraction_range_m = 1.5f;  // m; beyond, that fraction falls as 1/depth (dropout)
   float inverse_depth_kink_per_m = 0.008f;  // 1/m; |1/z_l + 1/z_r - 2/z_c| above this = a corner or
                                              // jump between (1/z is affine in the image on a plane)
@@ -142,6 +145,7 @@ struct NormalsConfig {
     v("min_depth_m", min_depth_m, 0.0f, 100.0f);
     v("jump_ratio", jump_ratio, 0.0f, 1.0f);
     v("cell_min_valid_fraction", cell_min_valid_fraction, 0.01f, 1.0f);
+    v("cell_min_coverage", cell_min_coverage, 0.0f, 1.0f);
     v("cell_valid_fraction_range_m", cell_valid_fraction_range_m, 0.01f, 100.0f);
     v("inverse_depth_kink_per_m", inverse_depth_kink_per_m, 0.0f, 10.0f);
     v("smooth", smooth);

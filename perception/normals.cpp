@@ -13,16 +13,20 @@ int grid_cell_px(const NormalsConfig& cfg, int image_width) {
 
 namespace {
 
-// The nearest valid depth (in [lo, lo + span], else 65535) of each column over
-// a band of `rows` pixel rows. Contiguous and branch-free: it vectorises.
+// The nearest valid depth (in [lo, lo + span], else 65535) and the number of
+// valid depths of each column over a band of `rows` pixel rows. Contiguous and
+// branch-free: it vectorises.
 void column_nearest(const uint16_t* band, int stride, int rows, int cols, uint16_t lo, uint16_t span,
-                    uint16_t* __restrict nearest) {
+                    uint16_t* __restrict nearest, uint16_t* __restrict valid) {
   std::fill(nearest, nearest + cols, uint16_t{65535});
+  std::fill(valid, valid + cols, uint16_t{0});
   for (int v = 0; v < rows; ++v) {
     const uint16_t* row = band + static_cast<size_t>(v) * stride;
     for (int u = 0; u < cols; ++u) {
       const uint16_t d = row[u];
-      nearest[u] = std::min(nearest[u], static_cast<uint16_t>(d - lo) <= span ? d : uint16_t{65535});
+      const bool on = static_cast<uint16_t>(d - lo) <= span;
+      nearest[u] = std::min(nearest[u], on ? d : uint16_t{65535});
+      valid[u] = static_cast<uint16_t>(valid[u] + on);
     }
   }
 }
@@ -48,8 +52,12 @@ void column_sums(const uint16_t* band, int stride, int v0, int rows, int cols, u
 }
 
 // Each cell is the mean of its nearest surface (pixels within jump_ratio of its nearest one): a mean
-// across a depth edge would float between surfaces. Near, a sparse cell is flying pixels; at range
-// the sensor drops many, so the valid fraction needed falls as 1/z beyond cell_valid_fraction_range_m.
+// across a depth edge would float between surfaces. A nearest surface that holds few of the cell's
+// measured pixels is flying pixels between surfaces; at range the sensor drops many and surfaces are
+// small, so the fraction needed falls as 1/z beyond cell_valid_fraction_range_m. It is a fraction of
+// the pixels measured, not of the cell: a surface that absorbs the IR (dark treads) returns nothing on
+// half its pixels at random, and counted against the cell's area half its cells had no point. A cell
+// counts as measured on at least cell_min_coverage of its pixels, so that a few returns make no mean.
 // kCellPx: the cell side when known at compile time (0: g.cell_px), so that
 // the loops over a cell's columns unroll (they were a quarter of the stage).
 template <int kCellPx>
@@ -67,6 +75,7 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
               inv_fy = static_cast<float>(1.0 / K.fy);
   NormalGrid::Scratch& s = g.scratch;
   s.column_min.resize(cols);
+  s.column_valid.resize(cols);
   s.column_limit.resize(cols);
   s.column_sum.resize(cols);
   s.column_count.resize(cols);
@@ -74,6 +83,8 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
   s.cell_min.resize(g.width);
   s.cell_limit.resize(g.width);
   uint16_t* cmin = s.column_min.data();
+  uint16_t* cvalid = s.column_valid.data();
+  const float min_measured = cfg.cell_min_coverage * cell_area;
   uint16_t* climit = s.column_limit.data();
   uint32_t* csum = s.column_sum.data();
   uint32_t* ccount = s.column_count.data();
@@ -83,7 +94,7 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
   for (int gy = 0; gy < g.height; ++gy) {
     const int v0 = gy * cp;
     const uint16_t* band = frame.depth.data() + static_cast<size_t>(v0) * K.width;
-    column_nearest(band, K.width, cp, cols, lo, span, cmin);
+    column_nearest(band, K.width, cp, cols, lo, span, cmin, cvalid);
     for (int gx = 0; gx < g.width; ++gx) {
       const uint16_t* c = cmin + gx * cp;
       uint16_t m = c[0];
@@ -106,12 +117,14 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
       const int i = g.index(gx, gy);
       // Every cell is written, those without a point as zeros: the grid is not cleared per frame.
       g.has_point[i] = 0;
+      g.filled[i] = 0;
       g.points[i].setZero();
       s.x[i] = s.y[i] = s.z[i] = s.iz[i] = 0.0f;
       const uint16_t d_min = s.cell_min[gx];
       if (d_min == 65535) continue;
-      uint32_t sum = 0, n = 0, su = 0, sv = 0;
+      uint32_t sum = 0, n = 0, su = 0, sv = 0, measured = 0;
       for (int u = gx * cp; u < (gx + 1) * cp; ++u) {
+        measured += cvalid[u];
         sum += csum[u];
         n += ccount[u];
         su += ccount[u] * static_cast<uint32_t>(u);
@@ -119,7 +132,8 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
       }
       const float fraction = d_min <= range_units ? cfg.cell_min_valid_fraction
                                                   : cfg.cell_min_valid_fraction * range_units / d_min;
-      if (static_cast<float>(n) < std::max(1.0f, std::ceil(fraction * cell_area))) continue;
+      const float base = std::max(static_cast<float>(measured), min_measured);
+      if (static_cast<float>(n) < std::max(1.0f, std::ceil(fraction * base))) continue;
       // One division per cell: the mean pixel and depth from 1/n.
       const float inv_n = 1.0f / static_cast<float>(n);
       const float z = static_cast<float>(sum) * scale * inv_n;
@@ -127,6 +141,7 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
                      (static_cast<float>(sv) * inv_n - cy) * inv_fy * z, z};
       s.x[i] = g.points[i].x(), s.y[i] = g.points[i].y(), s.z[i] = z, s.iz[i] = 1.0f / z;
       g.has_point[i] = 1;
+      g.filled[i] = static_cast<float>(n) >= std::ceil(fraction * cell_area);
     }
   }
 }
@@ -299,6 +314,7 @@ void compute_normals(const DepthImage& frame, const NormalsConfig& cfg, NormalGr
   for (auto* v : {&g.scratch.x, &g.scratch.y, &g.scratch.z, &g.scratch.iz, &g.scratch.nx, &g.scratch.ny, &g.scratch.nz})
     v->resize(n);
   g.has_point.resize(n);
+  g.filled.resize(n);
   g.has_normal.resize(n);
   if (n == 0) return;
   switch (g.cell_px) {  // the common cell sides unrolled (grid_cell_px; 640 / 320 wide and Kinect v2)

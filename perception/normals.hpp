@@ -19,12 +19,15 @@ struct NormalGrid {
   std::vector<Eigen::Vector3f> points;   // m, optical frame
   std::vector<Eigen::Vector3f> normals;  // unit, pointing towards the camera
   std::vector<uint8_t> has_point, has_normal;
+  // The point's surface fills the cell (cell_min_valid_fraction of its area, not only of its measured
+  // pixels): where pixels are missing the point may stand for the surface behind the one they missed.
+  std::vector<uint8_t> filled;
   int index(int gx, int gy) const { return gy * width + gx; }
 
   // Per-column and per-cell working rows of compute_normals, kept so that a
   // steady stream of frames allocates nothing.
   struct Scratch {
-    std::vector<uint16_t> column_min, column_limit;
+    std::vector<uint16_t> column_min, column_valid, column_limit;
     std::vector<uint32_t> column_sum, column_count, column_row_sum;
     std::vector<uint16_t> cell_min, cell_limit;
     std::vector<float> x, y, z, iz;  // points and 1/z, struct-of-arrays (0: no point)

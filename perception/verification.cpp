@@ -28,7 +28,9 @@ class Prober {
     const double u = column(p), v = K_.fy * p.y() / p.z() + K_.cy;
     if (u < 0 || v < 0 || u >= K_.width || v >= K_.height) return Probe::Undecided;
     const int gx = static_cast<int>(u) / g_.cell_px, gy = static_cast<int>(v) / g_.cell_px;
-    if (gx >= g_.width || gy >= g_.height || !g_.has_point[g_.index(gx, gy)]) return Probe::Undecided;
+    // A cell its surface does not fill decides nothing: its pixels on the probed surface may be the
+    // ones missing (grazing incidence), and its point the surface behind.
+    if (gx >= g_.width || gy >= g_.height || !g_.filled[g_.index(gx, gy)]) return Probe::Undecided;
     const float z = g_.points[g_.index(gx, gy)].z();
     const float tol = c_.solid_tolerance_m + c_.solid_tolerance_per_m2 * p.z() * p.z();
     if (z > std::max(p.z(), known_beyond_m) + tol) return Probe::Through;

@@ -5,6 +5,8 @@
 
 #include <Eigen/Geometry>
 
+#include <random>
+
 #include <gtest/gtest.h>
 
 namespace stairs {
@@ -36,6 +38,70 @@ TEST(PerceptionNormals, EmptyAndTinyFramesGiveNoNormals) {
   img.depth.assign(6, 1000);
   compute_normals(img, cfg.normals, g);
   for (uint8_t h : g.has_normal) EXPECT_EQ(h, 0);
+}
+
+// Cells with a point (and with a normal) over the whole grid.
+std::pair<int, int> grid_counts(const NormalGrid& g) {
+  int points = 0, normals = 0;
+  for (size_t i = 0; i < g.has_point.size(); ++i) points += g.has_point[i], normals += g.has_normal[i];
+  return {points, normals};
+}
+
+// A surface that absorbs the IR (dark treads) returns nothing on half its
+// pixels at random: its cells are still that surface, with half their pixels
+// measured. Counted against the cell's area, about half the cells had no point
+// and region growing found no tread (a D435 robot descent: 3 of 10 steps).
+TEST(PerceptionNormals, ASurfaceThatReturnsHalfItsPixelsKeepsItsCells) {
+  const DepthImage full = test::render_stairs(640, 480, -40, 0, 1.0, 0);  // a floor 1.3-2.8 m away
+  DepthImage dark = full;
+  std::mt19937 rng(7);
+  std::bernoulli_distribution drop(0.5);
+  for (uint16_t& d : dark.depth)
+    if (drop(rng)) d = 0;
+  NormalGrid a, b;
+  compute_normals(full, NormalsConfig{}, a);
+  compute_normals(dark, NormalsConfig{}, b);
+  const auto [full_points, full_normals] = grid_counts(a);
+  const auto [dark_points, dark_normals] = grid_counts(b);
+  EXPECT_GT(full_points, 15000);
+  EXPECT_GT(dark_points, 0.97 * full_points);
+  EXPECT_GT(dark_normals, 0.95 * full_normals);
+  // The points stay on the floor: 1 m below the camera within a centimetre.
+  const Eigen::Matrix3d R = test::optical_to_world(-40, 0);
+  int off = 0;
+  for (size_t i = 0; i < b.points.size(); ++i)
+    if (b.has_point[i] && std::abs((R * b.points[i].cast<double>()).z() + 1.0) > 0.01) ++off;
+  EXPECT_LT(off, 0.01 * dark_points);
+}
+
+// A few returns make no mean, and a cell's nearest surface must still hold half
+// of what it measured: flying pixels in front of a surface are no point,
+// whether the surface behind them returned all its pixels or half.
+TEST(PerceptionNormals, FewReturnsAndFlyingPixelsMakeNoPoint) {
+  DepthImage img;
+  img.K = {64, 64, 52.5, 52.5, 31.5, 31.5};
+  img.depth.assign(64 * 64, 1000);  // a wall 1 m away, 4x4 px cells
+  NormalsConfig cfg;
+  cfg.grid_cell_px = 40;  // 4 px at 64 wide
+  const auto cell = [&](int gx, int gy, int k) -> uint16_t& { return img.depth[(gy * 4 + k / 4) * 64 + gx * 4 + k % 4]; };
+  // Cell (2, 2): 3 of 16 pixels measured.
+  for (int k = 3; k < 16; ++k) cell(2, 2, k) = 0;
+  // Cell (5, 5): 2 flying pixels 20 cm in front of the wall, all the rest measured.
+  cell(5, 5, 0) = cell(5, 5, 2) = 800;
+  // Cell (8, 8): the same 2 flying pixels, and half the wall's pixels dropped.
+  cell(8, 8, 0) = cell(8, 8, 2) = 800;
+  for (int k = 1; k < 16; k += 2) cell(8, 8, k) = 0;
+  // Cell (11, 11): 6 of 16 pixels measured, all on the wall: a point.
+  for (int k = 0; k < 10; ++k) cell(11, 11, k) = 0;
+  NormalGrid g;
+  compute_normals(img, cfg, g);
+  ASSERT_EQ(g.width, 16);
+  EXPECT_FALSE(g.has_point[g.index(2, 2)]);
+  EXPECT_FALSE(g.has_point[g.index(5, 5)]);
+  EXPECT_FALSE(g.has_point[g.index(8, 8)]);
+  EXPECT_TRUE(g.has_point[g.index(11, 11)]);
+  EXPECT_NEAR(g.points[g.index(11, 11)].z(), 1.0f, 1e-4f);
+  EXPECT_TRUE(g.has_point[g.index(1, 1)]);
 }
 
 TEST(PerceptionRegionGrowing, StairsAreSegmentedIntoTreadsAndRisers) {
