@@ -30,6 +30,25 @@ bool face_goes_on_above(const PlaneSet& ps, size_t i, const StairConfig& cfg) {
   return false;
 }
 
+// Whether horizontal plane i lies inside the face of a riser facing the camera: all of it within
+// riser_at_nosing_m of the face along the stair, below the riser's top by more than half a level's
+// tolerance and above its foot by more than one. A tread starts at its riser's top and runs back
+// from it; a band across a riser's face is the edge under a nosing overhang's slab, where the
+// recessed riser meets the slab's front (a Kinect v2 robot's, 4 cm below the top: it stood for the
+// tread and the model's rise came out 2.6 cm short).
+bool inside_a_riser_face(const PlaneSet& ps, size_t i, const StairConfig& cfg) {
+  const PlaneExtent& b = ps.extents[i];
+  for (size_t j = 0; j < ps.planes.size(); ++j) {
+    if (ps.planes[j].kind != PlaneKind::Riser) continue;
+    const PlaneExtent& r = ps.extents[j];
+    if (std::min(b.t_max, r.t_max) <= std::max(b.t_min, r.t_min)) continue;
+    if (std::abs(b.s_min - r.s_mean) > cfg.riser_at_nosing_m || std::abs(b.s_max - r.s_mean) > cfg.riser_at_nosing_m)
+      continue;
+    if (b.z_mean < r.z_max - 0.5f * cfg.same_level_m && b.z_mean > r.z_min + cfg.same_level_m) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>& edges, const StairConfig& cfg) {
@@ -37,6 +56,7 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
     if (ps.planes[i].kind != PlaneKind::Tread || e.t_max - e.t_min < cfg.min_step_width_m) continue;
+    if (inside_a_riser_face(ps, i, cfg)) continue;
     levels.push_back({static_cast<int>(i), e.z_mean, e.s_min, e.s_max, e.t_min, e.t_max});
   }
   // Treads seen edge-on (a camera below or level with them) are too thin to

@@ -149,7 +149,14 @@ INSTANTIATE_TEST_SUITE_P(Sim, SensorAccuracy,
                                   "--carrier handheld --height 1.30 --pitch -38.3 --roll -7.4 --lateral 0.16 "
                                   "--yaw -32.2", 69036},
                              Walk{"dark_down_d435_robot", "--preset dark_treads --direction down --sensor d435 "
-                                  "--carrier robot --lateral 0.10 --yaw 10.6", 4599}),
+                                  "--carrier robot --lateral 0.10 --yaw 10.6", 4599},
+                             // A randomised walk (seed 71, 11): a Kinect v2 robot below 3 cm nosing
+                             // overhangs. Where the recessed riser meets the slab's front, 4 cm below the
+                             // tread, cells face up: a band across the riser's face was taken for the
+                             // tread, and the model's second rise came out 2.6 cm short (risers 1.17 cm).
+                             Walk{"nosing_band_up_kinect2_robot", "--preset straight_up --steps 4 --riser 0.198 "
+                                  "--tread 0.278 --width 0.96 --nosing 0.029 --walls none --sensor kinect2 "
+                                  "--carrier robot --lateral -0.24 --yaw -3.9", 52265}),
                          kName);
 
 }  // namespace

@@ -455,6 +455,33 @@ TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
   EXPECT_NEAR(*steps[2].tread_depth_m, 0.25, 1e-4);
 }
 
+// Under a nosing overhang the recessed riser meets the slab's front a slab's
+// thickness below the tread, and cells across that edge face up: a horizontal
+// band across the riser's face, 1 cm deep. A tread starts at its riser's top
+// and runs back from it; the band is none, and the riser's top stays the level
+// (a Kinect v2 robot's band 4 cm below the top stood for the tread: the
+// model's rise came out 2.6 cm short).
+TEST(PerceptionSteps, ABandAcrossARisersFaceIsNoTread) {
+  PlaneSet ps;
+  auto add = [&](PlaneKind kind, const PlaneExtent& e) { add_plane(ps, kind, e); };
+  add(PlaneKind::Tread, {2.0f, 3.0f, -0.5f, 0.5f, -0.45f, -0.45f, 2.5f, -0.45f});
+  for (int k = 0; k < 3; ++k) {
+    const float s = 3.0f + 0.25f * k, z0 = -0.45f + 0.18f * k;
+    add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.18f, s, z0 + 0.09f});
+  }
+  const float band_z = -0.45f + 0.18f * 2 - 0.04f;
+  add(PlaneKind::Tread, {3.245f, 3.255f, -0.5f, 0.5f, band_z, band_z, 3.25f, band_z});
+  const StairConfig cfg;
+  const std::vector<Level> levels = tread_levels(ps, {}, cfg);
+  ASSERT_EQ(levels.size(), 4u);
+  for (int k = 1; k < 4; ++k) EXPECT_NEAR(levels[k].z, -0.45f + 0.18f * k, 1e-5) << k;
+  // A tread that runs back from the riser's top is one, even seen only 3 cm deep.
+  ps.extents.back() = {3.25f, 3.28f, -0.5f, 0.5f, -0.09f, -0.09f, 3.265f, -0.09f};
+  const std::vector<Level> with_tread = tread_levels(ps, {}, cfg);
+  ASSERT_EQ(with_tread.size(), 4u);
+  EXPECT_EQ(with_tread[2].plane, 4);
+}
+
 // A robot's camera below the treads sees only risers, up to a flight whose
 // goings are 0.34 m (DIN allows 0.37): an unseen tread between two risers'
 // tops is as deep as any plausible tread, not only as a gap between seen
