@@ -13,22 +13,26 @@ int grid_cell_px(const NormalsConfig& cfg, int image_width) {
 
 namespace {
 
-// The nearest valid depth (in [lo, lo + span], else 65535) and the number of
-// valid depths of each column over a band of `rows` pixel rows. Contiguous and
-// branch-free: it vectorises.
+// The nearest valid depth (in [lo, lo + span], else 65535) of each column over
+// a band of `rows` pixel rows. Contiguous and branch-free: it vectorises.
 void column_nearest(const uint16_t* band, int stride, int rows, int cols, uint16_t lo, uint16_t span,
-                    uint16_t* __restrict nearest, uint16_t* __restrict valid) {
+                    uint16_t* __restrict nearest) {
   std::fill(nearest, nearest + cols, uint16_t{65535});
-  std::fill(valid, valid + cols, uint16_t{0});
   for (int v = 0; v < rows; ++v) {
     const uint16_t* row = band + static_cast<size_t>(v) * stride;
     for (int u = 0; u < cols; ++u) {
       const uint16_t d = row[u];
-      const bool on = static_cast<uint16_t>(d - lo) <= span;
-      nearest[u] = std::min(nearest[u], on ? d : uint16_t{65535});
-      valid[u] = static_cast<uint16_t>(valid[u] + on);
+      nearest[u] = std::min(nearest[u], static_cast<uint16_t>(d - lo) <= span ? d : uint16_t{65535});
     }
   }
+}
+
+// The valid depths (in [lo, lo + span]) of a cell of side `cp` at column u0 of the band.
+uint32_t measured_pixels(const uint16_t* band, int stride, int cp, int u0, uint16_t lo, uint16_t span) {
+  uint32_t n = 0;
+  for (int v = 0; v < cp; ++v)
+    for (int u = u0; u < u0 + cp; ++u) n += static_cast<uint16_t>(band[static_cast<size_t>(v) * stride + u] - lo) <= span;
+  return n;
 }
 
 // Per column over the band: the sum, count and sum of row indices (from v0) of
@@ -75,7 +79,6 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
               inv_fy = static_cast<float>(1.0 / K.fy);
   NormalGrid::Scratch& s = g.scratch;
   s.column_min.resize(cols);
-  s.column_valid.resize(cols);
   s.column_limit.resize(cols);
   s.column_sum.resize(cols);
   s.column_count.resize(cols);
@@ -83,7 +86,6 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
   s.cell_min.resize(g.width);
   s.cell_limit.resize(g.width);
   uint16_t* cmin = s.column_min.data();
-  uint16_t* cvalid = s.column_valid.data();
   const float min_measured = cfg.cell_min_coverage * cell_area;
   uint16_t* climit = s.column_limit.data();
   uint32_t* csum = s.column_sum.data();
@@ -94,7 +96,7 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
   for (int gy = 0; gy < g.height; ++gy) {
     const int v0 = gy * cp;
     const uint16_t* band = frame.depth.data() + static_cast<size_t>(v0) * K.width;
-    column_nearest(band, K.width, cp, cols, lo, span, cmin, cvalid);
+    column_nearest(band, K.width, cp, cols, lo, span, cmin);
     for (int gx = 0; gx < g.width; ++gx) {
       const uint16_t* c = cmin + gx * cp;
       uint16_t m = c[0];
@@ -122,9 +124,8 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
       s.x[i] = s.y[i] = s.z[i] = s.iz[i] = 0.0f;
       const uint16_t d_min = s.cell_min[gx];
       if (d_min == 65535) continue;
-      uint32_t sum = 0, n = 0, su = 0, sv = 0, measured = 0;
+      uint32_t sum = 0, n = 0, su = 0, sv = 0;
       for (int u = gx * cp; u < (gx + 1) * cp; ++u) {
-        measured += cvalid[u];
         sum += csum[u];
         n += ccount[u];
         su += ccount[u] * static_cast<uint32_t>(u);
@@ -132,8 +133,13 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
       }
       const float fraction = d_min <= range_units ? cfg.cell_min_valid_fraction
                                                   : cfg.cell_min_valid_fraction * range_units / d_min;
-      const float base = std::max(static_cast<float>(measured), min_measured);
-      if (static_cast<float>(n) < std::max(1.0f, std::ceil(fraction * base))) continue;
+      // A cell its nearest surface fills passes whatever it measured: its pixels are counted
+      // only where it does not (most cells are full; the count is a second pass over them).
+      const bool fills = static_cast<float>(n) >= std::ceil(fraction * cell_area);
+      if (!fills) {
+        const float measured = static_cast<float>(measured_pixels(band, K.width, cp, gx * cp, lo, span));
+        if (static_cast<float>(n) < std::max(1.0f, std::ceil(fraction * std::max(measured, min_measured)))) continue;
+      }
       // One division per cell: the mean pixel and depth from 1/n.
       const float inv_n = 1.0f / static_cast<float>(n);
       const float z = static_cast<float>(sum) * scale * inv_n;
@@ -141,7 +147,7 @@ void cell_means(const DepthImage& frame, const NormalsConfig& cfg, NormalGrid& g
                      (static_cast<float>(sv) * inv_n - cy) * inv_fy * z, z};
       s.x[i] = g.points[i].x(), s.y[i] = g.points[i].y(), s.z[i] = z, s.iz[i] = 1.0f / z;
       g.has_point[i] = 1;
-      g.filled[i] = static_cast<float>(n) >= std::ceil(fraction * cell_area);
+      g.filled[i] = fills;
     }
   }
 }

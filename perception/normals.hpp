@@ -27,7 +27,7 @@ struct NormalGrid {
   // Per-column and per-cell working rows of compute_normals, kept so that a
   // steady stream of frames allocates nothing.
   struct Scratch {
-    std::vector<uint16_t> column_min, column_valid, column_limit;
+    std::vector<uint16_t> column_min, column_limit;
     std::vector<uint32_t> column_sum, column_count, column_row_sum;
     std::vector<uint16_t> cell_min, cell_limit;
     std::vector<float> x, y, z, iz;  // points and 1/z, struct-of-arrays (0: no point)

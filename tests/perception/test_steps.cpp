@@ -276,6 +276,18 @@ TEST(PerceptionSteps, ANosingsSlabIsNoRiser) {
   }
 }
 
+// A floor at -0.45 m to 1 m ahead and the three risers of a flight (rise 0.18 m,
+// going 0.25 m) without their treads: planes 0-3.
+PlaneSet risers_on_a_floor() {
+  PlaneSet ps;
+  add_plane(ps, PlaneKind::Tread, {0.3f, 1.0f, -0.5f, 0.5f, -0.45f, -0.45f, 0.65f, -0.45f});
+  for (int k = 0; k < 3; ++k) {
+    const float s = 1.0f + 0.25f * k, z0 = -0.45f + 0.18f * k;
+    add_plane(ps, PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.18f, s, z0 + 0.09f});
+  }
+  return ps;
+}
+
 // Far up a flight each level loses its cells at both corners of a step (a
 // D435 at 2.5 m: the tread above started 5-9 cm behind the riser's face). The
 // face lies between where the level below stops and where the tread above
@@ -416,13 +428,8 @@ TEST(PerceptionSteps, ARisersTopIsNoLevelWhereItsFaceGoesOnAbove) {
 
 TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
   // A camera level with the flight sees the floor and the risers, not the treads.
-  PlaneSet ps;
+  PlaneSet ps = risers_on_a_floor();
   auto add = [&](PlaneKind kind, const PlaneExtent& e) { add_plane(ps, kind, e); };
-  add(PlaneKind::Tread, {0.3f, 1.0f, -0.5f, 0.5f, -0.45f, -0.45f, 0.65f, -0.45f});
-  for (int k = 0; k < 3; ++k) {
-    const float s = 1.0f + 0.25f * k, z0 = -0.45f + 0.18f * k;
-    add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.18f, s, z0 + 0.09f});
-  }
   PlaneExtent cut{1.75f, 1.75f, -0.5f, 0.5f, 0.09f, 0.15f, 1.75f, 0.12f};
   cut.top_in_view = false;  // continues above the image: its top is no nosing
   add(PlaneKind::Riser, cut);
@@ -462,21 +469,15 @@ TEST(PerceptionSteps, RisersWithoutTreadsGiveLevelsAtTheirTops) {
 // (a Kinect v2 robot's band 4 cm below the top stood for the tread: the
 // model's rise came out 2.6 cm short).
 TEST(PerceptionSteps, ABandAcrossARisersFaceIsNoTread) {
-  PlaneSet ps;
-  auto add = [&](PlaneKind kind, const PlaneExtent& e) { add_plane(ps, kind, e); };
-  add(PlaneKind::Tread, {2.0f, 3.0f, -0.5f, 0.5f, -0.45f, -0.45f, 2.5f, -0.45f});
-  for (int k = 0; k < 3; ++k) {
-    const float s = 3.0f + 0.25f * k, z0 = -0.45f + 0.18f * k;
-    add(PlaneKind::Riser, {s, s, -0.5f, 0.5f, z0, z0 + 0.18f, s, z0 + 0.09f});
-  }
-  const float band_z = -0.45f + 0.18f * 2 - 0.04f;
-  add(PlaneKind::Tread, {3.245f, 3.255f, -0.5f, 0.5f, band_z, band_z, 3.25f, band_z});
+  PlaneSet ps = risers_on_a_floor();
+  const float band_z = -0.45f + 0.18f * 2 - 0.04f;  // under the second riser's top
+  add_plane(ps, PlaneKind::Tread, {1.245f, 1.255f, -0.5f, 0.5f, band_z, band_z, 1.25f, band_z});
   const StairConfig cfg;
   const std::vector<Level> levels = tread_levels(ps, {}, cfg);
   ASSERT_EQ(levels.size(), 4u);
   for (int k = 1; k < 4; ++k) EXPECT_NEAR(levels[k].z, -0.45f + 0.18f * k, 1e-5) << k;
   // A tread that runs back from the riser's top is one, even seen only 3 cm deep.
-  ps.extents.back() = {3.25f, 3.28f, -0.5f, 0.5f, -0.09f, -0.09f, 3.265f, -0.09f};
+  ps.extents.back() = {1.25f, 1.28f, -0.5f, 0.5f, -0.09f, -0.09f, 1.265f, -0.09f};
   const std::vector<Level> with_tread = tread_levels(ps, {}, cfg);
   ASSERT_EQ(with_tread.size(), 4u);
   EXPECT_EQ(with_tread[2].plane, 4);
