@@ -13,6 +13,9 @@ int grid_cell_px(const NormalsConfig& cfg, int image_width) {
 
 namespace {
 
+// A valid depth: within [lo, lo + span] (one unsigned compare; 0, no return, wraps above span).
+inline bool valid_depth(uint16_t d, uint16_t lo, uint16_t span) { return static_cast<uint16_t>(d - lo) <= span; }
+
 // The nearest valid depth (in [lo, lo + span], else 65535) of each column over
 // a band of `rows` pixel rows. Contiguous and branch-free: it vectorises.
 void column_nearest(const uint16_t* band, int stride, int rows, int cols, uint16_t lo, uint16_t span,
@@ -22,7 +25,7 @@ void column_nearest(const uint16_t* band, int stride, int rows, int cols, uint16
     const uint16_t* row = band + static_cast<size_t>(v) * stride;
     for (int u = 0; u < cols; ++u) {
       const uint16_t d = row[u];
-      nearest[u] = std::min(nearest[u], static_cast<uint16_t>(d - lo) <= span ? d : uint16_t{65535});
+      nearest[u] = std::min(nearest[u], valid_depth(d, lo, span) ? d : uint16_t{65535});
     }
   }
 }
@@ -31,7 +34,7 @@ void column_nearest(const uint16_t* band, int stride, int rows, int cols, uint16
 uint32_t measured_pixels(const uint16_t* band, int stride, int cp, int u0, uint16_t lo, uint16_t span) {
   uint32_t n = 0;
   for (int v = 0; v < cp; ++v)
-    for (int u = u0; u < u0 + cp; ++u) n += static_cast<uint16_t>(band[static_cast<size_t>(v) * stride + u] - lo) <= span;
+    for (int u = u0; u < u0 + cp; ++u) n += valid_depth(band[static_cast<size_t>(v) * stride + u], lo, span);
   return n;
 }
 
