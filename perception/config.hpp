@@ -387,6 +387,9 @@ struct PlaneGeometryConfig {
   float extent_percentile = 0.02f;   // fraction trimmed at each end of an extent
   float view_edge_band_m = 0.02f;    // m; cells this close to a plane's top (bottom) height are its top
                                      // (bottom) row: in the grid's margin, the plane may go on out of view
+  float riser_face_band_fraction = 0.25f;  // of a riser's seen height, left out at its top and at its foot
+                                           // where its face is placed (median): a nosing's slab front stands
+                                           // 2-5 cm before the face, a concave foot reads long (multipath)
 
   template <class V>
   void visit(V& v) {
@@ -402,6 +405,7 @@ struct PlaneGeometryConfig {
     v("tread_split_min_seen_fraction", tread_split_min_seen_fraction, 0.0f, 1.0f);
     v("extent_percentile", extent_percentile, 0.0f, 0.49f);
     v("view_edge_band_m", view_edge_band_m, 0.0f, 1.0f);
+    v("riser_face_band_fraction", riser_face_band_fraction, 0.0f, 0.49f);
   }
 };
 

@@ -316,14 +316,14 @@ std::vector<Group> merge(Classified c, const NormalGrid& g, const std::vector<Se
 
 // Scratch buffers of extents(), reused across planes.
 struct ExtentScratch {
-  std::vector<float> ss, ts, zs;
+  std::vector<float> ss, ts, zs, face;
   RankScratch ranks;
 };
 
 // Extents along the axis (s), across it (t) and up (z), trimmed percentiles;
 // whether the plane's top / bottom rows are inside the grid's valid margin.
 PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Eigen::Matrix3f& R, float yaw_rad,
-                    const PlaneGeometryConfig& cfg, Eigen::Vector3f& centroid, ExtentScratch& x) {
+                    bool face_band, const PlaneGeometryConfig& cfg, Eigen::Vector3f& centroid, ExtentScratch& x) {
   const float cy = std::cos(yaw_rad), sy = std::sin(yaw_rad);
   x.ss.clear();
   x.ts.clear();
@@ -361,6 +361,20 @@ PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Ei
                        (cells[k] < above_bottom && g.has_point[static_cast<size_t>(cells[k] + g.width)]);
   e.s_mean = cy * centroid.x() + sy * centroid.y();
   e.z_mean = centroid.z();
+  // A riser's face: the median position of its middle rows. Under a nosing overhang the slab's
+  // front stands before the face at its top, and a concave foot reads long on a time-of-flight
+  // camera; the mean of all its cells moved with how much of each the view held.
+  if (face_band) {
+    const float band = cfg.riser_face_band_fraction * (e.z_max - e.z_min);
+    x.face.clear();
+    for (size_t k = 0; k < cells.size(); ++k)
+      if (x.zs[k] >= e.z_min + band && x.zs[k] <= e.z_max - band) x.face.push_back(x.ss[k]);
+    if (x.face.size() >= 3) {
+      const auto mid = x.face.begin() + static_cast<std::ptrdiff_t>(x.face.size() / 2);
+      std::nth_element(x.face.begin(), mid, x.face.end());
+      e.s_mean = *mid;
+    }
+  }
   return e;
 }
 
@@ -383,7 +397,7 @@ PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segment
     p.kind = grp.kind;
     p.normal = grp.normal.normalized();
     p.support = static_cast<int>(cells.size()) * g.cell_px * g.cell_px;
-    const PlaneExtent e = extents(g, cells, R, out.yaw_rad, cfg, p.centroid, scratch);
+    const PlaneExtent e = extents(g, cells, R, out.yaw_rad, p.kind == PlaneKind::Riser, cfg, p.centroid, scratch);
     if (p.kind == PlaneKind::Tread) {
       p.corners[Plane::kTopLeft] = out.to_camera(e.s_max, e.t_max, e.z_mean);
       p.corners[Plane::kTopRight] = out.to_camera(e.s_max, e.t_min, e.z_mean);

@@ -126,7 +126,11 @@ std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& po
     o.riser = plane_at(obs, s.riser_plane);
     o.tread = plane_at(obs, s.tread_plane);
     if (o.riser) {
-      o.riser_x_m = (to_model * o.riser->centroid.cast<double>()).x();
+      // At its face as perception placed it (the box's corners: the median of its middle rows,
+      // not the mean of all its cells, which a nosing's slab front pulls forward).
+      Eigen::Vector3d face = Eigen::Vector3d::Zero();
+      for (const auto& corner : o.riser->corners) face += 0.25 * corner.cast<double>();
+      o.riser_x_m = (to_model * face).x();
       add_lateral_extent(*o.riser, to_model, o.y_min_m, o.y_max_m);
     }
     if (o.tread) {

@@ -653,6 +653,33 @@ TEST(PerceptionPlaneGeometry, AnUpwardFacingPatchAboveTheCameraIsNoTread) {
   }
 }
 
+// A riser's face is where its middle rows stand. Under a nosing overhang the slab's front (4 cm
+// tall) stands 3 cm before the face and is merged into the same riser plane; the mean of its cells
+// moved with how much of the slab the view held (a Kinect v2 ascent's per-frame treads 1-3 cm long
+// where the next riser was seen differently). The floor, a riser face 1.23 m ahead under a slab
+// whose front is at 1.2 m, and the tread on it, seen from 0.8 m up looking down 35 deg: the riser
+// stands at its face (the mean of its cells lay 0.56 cm before it).
+TEST(PerceptionPlaneGeometry, ARisersFaceIsItsMiddleNotTheNosingsSlab) {
+  const Eigen::Vector3d up(0, 0, 1), x(1, 0, 0), y(0, 1, 0);
+  const std::vector<Rect> rects = {
+      {{0.8, 0, -0.8}, up, x, 0.43, 1.0, y},       // the floor, to the riser's foot
+      {{1.23, 0, -0.735}, -x, y, 0.6, 0.065},      // the riser's face, 13 cm, under the slab
+      {{1.2, 0, -0.65}, -x, y, 0.6, 0.02},         // the slab's front, 4 cm
+      {{1.215, 0, -0.67}, -up, x, 0.015, 0.6, y},  // its underside (unseen from above)
+      {{1.35, 0, -0.63}, up, x, 0.15, 0.6, y}};    // the tread
+  const PlaneSet ps = planes_of(rects, -35, 3);
+  int risers = 0;
+  for (size_t i = 0; i < ps.planes.size(); ++i) {
+    if (ps.planes[i].kind != PlaneKind::Riser) continue;
+    ++risers;
+    const float mean_s = ps.planes[i].centroid.x() * std::cos(ps.yaw_rad) + ps.planes[i].centroid.y() * std::sin(ps.yaw_rad);
+    EXPECT_NEAR(ps.extents[i].s_mean, 1.23f, 0.004f);
+    EXPECT_GT(ps.extents[i].z_max, -0.66f);  // the slab's front is in this plane
+    EXPECT_LT(mean_s, 1.226f);               // and pulls the mean of its cells 0.4 cm or more forward
+  }
+  EXPECT_EQ(risers, 1);
+}
+
 TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
   // Looking up a flight: floor, two treads, and at the image's top edge 3 cm
   // of the next riser standing on the last tread (its top out of view).

@@ -162,6 +162,26 @@ TEST(TrackerMerge, ATreadPlaneSetsAStepsHeightOverItsEdges) {
   EXPECT_EQ(map.steps[0].confirmations, 13);
 }
 
+// A riser stands where perception placed its face, its box's corners (the median of its middle
+// rows), not at the mean of its cells: under a nosing overhang the slab's front pulls that mean
+// forward by as much of the slab as the view held.
+TEST(TrackerMerge, ARiserStandsAtItsBoxsFaceNotItsCentroid) {
+  Observation obs;
+  Plane riser;
+  riser.kind = PlaneKind::Riser;
+  for (auto& corner : riser.corners) corner = Eigen::Vector3f(1.23f, 0.0f, -0.7f);
+  riser.centroid = Eigen::Vector3f(1.224f, 0.0f, -0.7f);
+  obs.planes.push_back(riser);
+  Step step;
+  step.riser_plane = 0;
+  step.nosing_m = Eigen::Vector3d(1.23, 0.0, -0.63);
+  obs.steps.push_back(step);
+  const std::vector<ObservedStep> observed = observed_steps(obs, Pose4());
+  ASSERT_EQ(observed.size(), 1u);
+  ASSERT_TRUE(observed[0].riser_x_m.has_value());
+  EXPECT_NEAR(*observed[0].riser_x_m, 1.23, 1e-6);
+}
+
 TEST(TrackerMerge, ASecondNosingAtAStepsXIsNoNewStep) {
   // A robot looking up at risers under nosing overhangs sees a riser's top
   // where the slab begins, 5-10 cm below its nosing. Beside the same step
