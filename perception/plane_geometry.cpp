@@ -1,5 +1,7 @@
 #include "perception/plane_geometry.hpp"
 
+#include "common/median.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -369,11 +371,7 @@ PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Ei
     x.face.clear();
     for (size_t k = 0; k < cells.size(); ++k)
       if (x.zs[k] >= e.z_min + band && x.zs[k] <= e.z_max - band) x.face.push_back(x.ss[k]);
-    if (x.face.size() >= 3) {
-      const auto mid = x.face.begin() + static_cast<std::ptrdiff_t>(x.face.size() / 2);
-      std::nth_element(x.face.begin(), mid, x.face.end());
-      e.s_mean = *mid;
-    }
+    if (x.face.size() >= 3) e.s_mean = median_in_place(x.face);
   }
   return e;
 }
