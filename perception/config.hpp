@@ -390,6 +390,10 @@ struct PlaneGeometryConfig {
   float riser_face_band_fraction = 0.25f;  // of a riser's seen height, left out at its top and at its foot
                                            // where its face is placed (median): a nosing's slab front stands
                                            // 2-5 cm before the face, a concave foot reads long (multipath)
+  float occluder_min_gap_m = 0.1f;   // m; a surface this much nearer (optical depth) just above a riser's
+                                     // top hides it: its top is where the view of it stops (a table's edge
+                                     // before a sofa), not its top (a nosing's slab stands <= 5 cm before it)
+  float occluded_top_fraction = 0.5f;  // of a riser's top cells: more with a nearer surface just above = top unseen
 
   template <class V>
   void visit(V& v) {
@@ -406,6 +410,8 @@ struct PlaneGeometryConfig {
     v("extent_percentile", extent_percentile, 0.0f, 0.49f);
     v("view_edge_band_m", view_edge_band_m, 0.0f, 1.0f);
     v("riser_face_band_fraction", riser_face_band_fraction, 0.0f, 0.49f);
+    v("occluder_min_gap_m", occluder_min_gap_m, 0.0f, 10.0f);
+    v("occluded_top_fraction", occluded_top_fraction, 0.0f, 1.0f);
   }
 };
 

@@ -316,6 +316,16 @@ std::vector<Group> merge(Classified c, const NormalGrid& g, const std::vector<Se
   return all;
 }
 
+// Whether the first cell with a point in the two above `cell` is nearer than it by more than gap_m.
+bool nearer_just_above(const NormalGrid& g, int cell, float gap_m) {
+  for (int up = 1; up <= 2; ++up) {
+    const int c = cell - up * g.width;
+    if (c < 0) return false;
+    if (g.has_point[static_cast<size_t>(c)]) return g.points[c].z() < g.points[cell].z() - gap_m;
+  }
+  return false;
+}
+
 // Scratch buffers of extents(), reused across planes.
 struct ExtentScratch {
   std::vector<float> ss, ts, zs, face;
@@ -354,6 +364,18 @@ PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Ei
   const int below_top = (margin + 1) * g.width, above_bottom = (g.height - 1 - margin) * g.width;
   for (size_t k = 0; k < cells.size() && e.top_in_view; ++k)
     e.top_in_view = x.zs[k] < e.z_max - cfg.view_edge_band_m || cells[k] >= below_top;
+  // Nor is a riser's top in view where a nearer surface stands just above it in the image: the view of
+  // it stops there (a table's far edge before a sofa's front made a 0.23 m "riser" and a false step).
+  // Above a real riser's top lies its tread or the next riser, both farther.
+  if (face_band && e.top_in_view) {
+    int top = 0, hidden = 0;
+    for (size_t k = 0; k < cells.size(); ++k) {
+      if (x.zs[k] < e.z_max - cfg.view_edge_band_m) continue;
+      ++top;
+      hidden += nearer_just_above(g, cells[k], cfg.occluder_min_gap_m);
+    }
+    e.top_in_view = hidden <= cfg.occluded_top_fraction * top;
+  }
   // Nor is its bottom in view where the depth below it ends (a time-of-flight
   // sensor's minimum range, dropout): the plane is cut there, not ended (a
   // robot's Kinect v2 measured an 8 cm first rise from a riser whose lower

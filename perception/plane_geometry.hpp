@@ -16,7 +16,8 @@ struct PlaneExtent {
   float s_min = 0, s_max = 0, t_min = 0, t_max = 0, z_min = 0, z_max = 0;
   float s_mean = 0, z_mean = 0;  // the cells' mean; a riser's s_mean is its face: the median of its
                                  // middle rows (PlaneGeometryConfig::riser_face_band_fraction)
-  bool top_in_view = true;     // false when the plane's highest cells lie on the grid's top border
+  bool top_in_view = true;     // false when the plane's highest cells lie on the grid's top border or, for a
+                               // riser, a nearer surface hides them (occluder_min_gap_m)
   bool bottom_in_view = true;  // false when its lowest cells lie on the grid's bottom border
 };
 

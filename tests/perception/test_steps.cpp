@@ -680,6 +680,37 @@ TEST(PerceptionPlaneGeometry, ARisersFaceIsItsMiddleNotTheNosingsSlab) {
   EXPECT_EQ(risers, 1);
 }
 
+// A riser's top is where the view of it stops only when nothing nearer hides it. Looking down past
+// a coffee table at a sofa, the sofa's front showed under the table's top up to where the table's
+// edge hid it: that edge drew a 0.23 m "riser" top, a level for the grammar, and a two-step
+// staircase (a D435 hand-held walk towards a sofa). The floor 0.84 m below the camera, a box's
+// front 0.35 m tall 3.2 m ahead, and a table top 0.42-0.45 m high from 2.2 to 2.7 m before it,
+// wider than the box: the box's front is seen up to 0.22 m, its top out of view; without the
+// table its top is in view.
+TEST(PerceptionPlaneGeometry, ARisersTopHiddenByANearerSurfaceIsNotInView) {
+  const Eigen::Vector3d up(0, 0, 1), x(1, 0, 0), y(0, 1, 0);
+  std::vector<Rect> rects = {
+      {{2.25, 0, -0.84}, up, x, 1.75, 1.5, y},  // the floor
+      {{3.2, 0, -0.665}, -x, y, 0.5, 0.175},    // the box's front, 0.35 m
+      {{3.5, 0, -0.49}, up, x, 0.3, 0.5, y}};   // its top
+  const auto box_front = [](const PlaneSet& ps) {
+    std::optional<PlaneExtent> front;
+    for (size_t i = 0; i < ps.planes.size(); ++i)
+      if (ps.planes[i].kind == PlaneKind::Riser && std::abs(ps.extents[i].s_mean - 3.2f) < 0.05f) front = ps.extents[i];
+    return front;
+  };
+  const auto open = box_front(planes_of(rects, -25, 3));
+  ASSERT_TRUE(open);
+  EXPECT_NEAR(open->z_max, -0.49f, 0.03f);
+  EXPECT_TRUE(open->top_in_view);
+  rects.push_back({{2.45, 0, -0.39}, up, x, 0.25, 0.6, y});  // the table's top
+  rects.push_back({{2.2, 0, -0.405}, -x, y, 0.6, 0.015});    // its front edge
+  const auto hidden = box_front(planes_of(rects, -25, 4));
+  ASSERT_TRUE(hidden);
+  EXPECT_LT(hidden->z_max, -0.59f);  // seen up to where the table's edge hides it
+  EXPECT_FALSE(hidden->top_in_view);
+}
+
 TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
   // Looking up a flight: floor, two treads, and at the image's top edge 3 cm
   // of the next riser standing on the last tread (its top out of view).
