@@ -439,6 +439,8 @@ struct StairConfig {
   float riser_own_ahead_m = 0.4f;    // ... to this far ahead of it is that riser's own (about a run)
   float riser_at_nosing_m = 0.1f;    // m; a segmented riser this close to a level's front edge is its step's
   float riser_contact_m = 0.06f;     // m; a riser's bottom (top) this close to a level stands on (reaches) it
+  float riser_min_width_m = 0.1f;    // m; a narrower plane facing the camera is no step's riser: a baluster or
+                                     // post (2-8 cm) before a riser had stood for it (a 17 cm and a 32 cm run)
   float max_level_gap_m = 0.3f;      // m; a level ends this close to where the next one starts (the riser
                                      // between, its occluded strip)
 
@@ -461,6 +463,7 @@ struct StairConfig {
     v("riser_own_ahead_m", riser_own_ahead_m, 0.0f, 2.0f);
     v("riser_at_nosing_m", riser_at_nosing_m, 0.0f, 1.0f);
     v("riser_contact_m", riser_contact_m, 0.0f, 1.0f);
+    v("riser_min_width_m", riser_min_width_m, 0.0f, 10.0f);
     v("max_level_gap_m", max_level_gap_m, 0.0f, 5.0f);
   }
 };

@@ -34,6 +34,10 @@ std::optional<double> successor(const Level& a, const Level& b, Direction dir, s
   // down, risers face away, so such a level is in no descending flight (a
   // table's legs seen under its top are).
   if (dir == Direction::Down && (a.riser_top || b.riser_top)) return std::nullopt;
+  // A descending flight is seen from above: its levels lie below the eye (seen from below, a flight
+  // rises away from the camera). A robot's camera under a chair's back, a table's edge and the
+  // seat's (their depth jumps, seen from below) had them as a flight going down.
+  if (dir == Direction::Down && (a.z >= 0 || b.z >= 0)) return std::nullopt;
   const float rise = dir == Direction::Up ? b.z - a.z : a.z - b.z;
   if (!din_riser_ok(rise, c) || !laterally_overlapping(a, b, c)) return std::nullopt;
   // A step rises above the whole of the level below it: a tread is level

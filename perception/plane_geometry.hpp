@@ -47,14 +47,17 @@ PlaneSet plane_geometry(const NormalGrid& grid, const std::vector<Segment>& segm
                         std::optional<float> axis_yaw_rad = std::nullopt);
 
 // The one riser search of steps and reconstruction: of the segmented risers
-// whose face (s_mean) lies within [s_lo, s_hi] and whose extent satisfies
-// `fits`, the one `better` (a, b) prefers; -1 if none.
+// whose face (s_mean) lies within [s_lo, s_hi], at least `min_width_m` wide
+// (a riser spans its step; a baluster or post facing the camera is narrower),
+// and whose extent satisfies `fits`, the one `better` (a, b) prefers; -1 if none.
 template <class Fits, class Better>
-int find_riser(const PlaneSet& ps, float s_lo, float s_hi, Fits fits, Better better) {
+int find_riser(const PlaneSet& ps, float s_lo, float s_hi, float min_width_m, Fits fits, Better better) {
   int best = -1;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
-    if (ps.planes[i].kind != PlaneKind::Riser || e.s_mean < s_lo || e.s_mean > s_hi || !fits(e)) continue;
+    if (ps.planes[i].kind != PlaneKind::Riser || e.s_mean < s_lo || e.s_mean > s_hi || e.t_max - e.t_min < min_width_m ||
+        !fits(e))
+      continue;
     if (best < 0 || better(e, ps.extents[static_cast<size_t>(best)])) best = static_cast<int>(i);
   }
   return best;
@@ -62,8 +65,8 @@ int find_riser(const PlaneSet& ps, float s_lo, float s_hi, Fits fits, Better bet
 
 // ... nearest to s_ref.
 template <class Fits>
-int find_riser(const PlaneSet& ps, float s_lo, float s_hi, float s_ref, Fits fits) {
-  return find_riser(ps, s_lo, s_hi, fits, [s_ref](const PlaneExtent& a, const PlaneExtent& b) {
+int find_riser(const PlaneSet& ps, float s_lo, float s_hi, float s_ref, float min_width_m, Fits fits) {
+  return find_riser(ps, s_lo, s_hi, min_width_m, fits, [s_ref](const PlaneExtent& a, const PlaneExtent& b) {
     return std::abs(a.s_mean - s_ref) < std::abs(b.s_mean - s_ref);
   });
 }

@@ -13,10 +13,11 @@ namespace {
 // A segmented riser whose face lies between axial positions s_lo and s_hi and
 // which spans upwards (above = true) or downwards from height z (within
 // contact_m) by more than min_span_m, or by more than cut_min_span_m where the
-// image's border cuts its far end off (a sliver of it is then as good as more).
+// image's border cuts its far end off (a sliver of it is then as good as more),
+// at least min_width_m wide.
 int riser_at(const PlaneSet& ps, float s_lo, float s_hi, float z, bool above, float min_span_m, float cut_min_span_m,
-             float contact_m) {
-  return find_riser(ps, s_lo, s_hi, 0.5f * (s_lo + s_hi), [&](const PlaneExtent& e) {
+             float contact_m, float min_width_m) {
+  return find_riser(ps, s_lo, s_hi, 0.5f * (s_lo + s_hi), min_width_m, [&](const PlaneExtent& e) {
     return above ? std::abs(e.z_min - z) < contact_m && e.z_max > z + (e.top_in_view ? min_span_m : cut_min_span_m)
                  : std::abs(e.z_max - z) < contact_m && e.z_min < z - (e.bottom_in_view ? min_span_m : cut_min_span_m);
   });
@@ -52,7 +53,7 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
   const float contact = cfg.riser_contact_m;
   const float sliver = static_cast<float>(cfg.min_riser_seen_fraction * median);
   if (const int r = riser_at(ps, base.s_min - 2 * contact, base.s_min + 2 * contact, base.z, false, contact, sliver,
-                             contact);
+                             contact, cfg.riser_min_width_m);
       r >= 0) {
     Step s;
     s.riser_plane = r;
@@ -90,7 +91,8 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
                                     : top.s_max + static_cast<float>(cfg.tread_max_m * (1 + cfg.din_tolerance));
   // Its top is usually cut off by the view: a sliver of it is as good as more
   // (one whose top is in view is measured against DIN below).
-  if (const int r = riser_at(ps, s_lo, s_hi, top.z, true, sliver, sliver, cfg.riser_contact_m); r >= 0) {
+  if (const int r = riser_at(ps, s_lo, s_hi, top.z, true, sliver, sliver, cfg.riser_contact_m, cfg.riser_min_width_m);
+      r >= 0) {
     const PlaneExtent& e = ps.extents[r];
     const double seen = e.z_max - top.z;
     // A riser whose top is in view is measured; one that rises beyond DIN's

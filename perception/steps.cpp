@@ -164,7 +164,7 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
     // hand-held Kinect v1 ascent's treads 0.20-0.25 m for 0.222).
     s.riser_plane = find_riser(
         ps, std::min(at - cfg.riser_at_nosing_m, band ? below.s_max : at), at + cfg.riser_at_nosing_m,
-        [&](const PlaneExtent& e) { return e.z_max >= below.z && e.z_min <= tread.z; },
+        cfg.riser_min_width_m, [&](const PlaneExtent& e) { return e.z_max >= below.z && e.z_min <= tread.z; },
         [](const PlaneExtent& a, const PlaneExtent& b) { return a.z_min < b.z_min; });
     // The riser's face is the better estimate: the tread's edge cells are lost at the corner.
     if (s.riser_plane >= 0) at = ps.extents[s.riser_plane].s_mean;

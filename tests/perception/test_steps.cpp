@@ -125,6 +125,24 @@ TEST(PerceptionGrammar, AJumpAloneIsNoLandingGoingDown) {
   EXPECT_EQ(ch.landings, 0);
 }
 
+// A descending flight is seen from above. A robot's camera 0.45 m up saw, from below, the depth
+// jumps of a chair's back (0.43 m above the eye), a table's edge (0.24 m) and the chair's seat (at
+// the eye): three levels falling away from the camera, taken as a flight going down (a kitchen table,
+// a Kinect v2 robot: 3 false steps in the model). The same levels below the eye are a descent.
+TEST(PerceptionGrammar, LevelsAboveTheEyeAreNoDescent) {
+  const auto edge = [](float z, float s) {
+    Level l = level(z, s, s);
+    l.far_edge = true;
+    l.edge_s = s;
+    return l;
+  };
+  const StairConfig c;
+  EXPECT_EQ(best_chain({edge(0.43f, 2.72f), edge(0.24f, 3.04f), edge(-0.02f, 3.32f)}, c).steps(), 0);
+  const StairChain below = best_chain({edge(-0.43f, 2.72f), edge(-0.62f, 3.04f), edge(-0.88f, 3.32f)}, c);
+  EXPECT_EQ(below.direction, Direction::Down);
+  EXPECT_EQ(below.steps(), 2);
+}
+
 TEST(PerceptionReconstruction, AMidLandingEndingInADropIsTheLastStepGoingDown) {
   // The same flight seen from above, but its last level ends in a depth jump
   // 1.3 m on: a landing with the next flight below its edge, not the floor.
@@ -709,6 +727,21 @@ TEST(PerceptionPlaneGeometry, ARisersTopHiddenByANearerSurfaceIsNotInView) {
   ASSERT_TRUE(hidden);
   EXPECT_LT(hidden->z_max, -0.59f);  // seen up to where the table's edge hides it
   EXPECT_FALSE(hidden->top_in_view);
+}
+
+// A riser spans its step: a baluster facing the camera 7 cm before a riser, its foot 5 mm lower,
+// was "the one reaching lowest" and stood for it (a robot's Kinect v1 on a flight with railings:
+// runs of 17.8 and 32.2 cm for 25, and verification refused most frames).
+TEST(PerceptionSteps, ABalusterBeforeARiserIsNotItsRiser) {
+  PlaneSet ps = three_levels(0.3f, 1.0f, -1.0f);
+  add_plane(ps, PlaneKind::Riser, {0.93f, 0.93f, -0.3f, -0.28f, -1.005f, -0.7f, 0.93f, -0.85f});
+  const StairConfig cfg;
+  const StairChain chain = best_chain(tread_levels(ps, {}, cfg), cfg);
+  ASSERT_EQ(chain.direction, Direction::Up);
+  const std::vector<Step> steps = steps_from_chain(ps, chain, cfg);
+  ASSERT_EQ(steps.size(), 2u);
+  EXPECT_EQ(steps[0].riser_plane, 3);
+  EXPECT_NEAR(steps[0].nosing_m.x(), 1.0, 1e-4);
 }
 
 TEST(PerceptionReconstruction, ASliverOfRiserCutByTheViewIsTheNextStep) {
