@@ -195,7 +195,8 @@ struct ConcaveCornersConfig {
 
 // --- gravity (thesis Algorithm 4): up from weighted horizontal normals
 struct GravityConfig {
-  float max_tilt_from_image_up_deg = 80.0f;  // deg; horizontal-plane candidates vs. image up
+  float max_tilt_from_image_up_deg = 80.0f;  // deg; horizontal-plane candidates vs. image up (with no previous
+                                             // up: with one, nearness to it alone)
   float parallel_deg = 4.0f;                 // deg; normals this close count as parallel
   float prior_max_deg = 20.0f;               // deg; up may turn this much from the previous frame's (more
                                              // by sway_deg_per_s where that up is older: no plane measured it)

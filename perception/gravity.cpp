@@ -183,9 +183,12 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   const float cos_prior = std::cos(cfg.prior_max_deg * deg);
   const Eigen::Vector3f image_up(0, -1, 0);
   // Treads and risers both qualify on a stair; the previous frame's up tells
-  // them apart when the risers dominate (a robot looking up a flight).
+  // them apart when the risers dominate (a robot looking up a flight). With it,
+  // nearness to it alone: a camera looking straight down (a robot tipping over
+  // a nosing, 88 deg down) sees the treads face-on, more than
+  // max_tilt_from_image_up_deg from image up, and had kept the previous pitch.
   auto near_up = [&](const Eigen::Vector3f& n) {
-    return n.dot(image_up) >= cos_tilt && (!prior || n.dot(*prior) >= cos_prior);
+    return prior ? n.dot(*prior) >= cos_prior : n.dot(image_up) >= cos_tilt;
   };
   const auto horizontal = best_family(segments, cos_par, near_up);
   // Without a prior only the family's members may stand for up (a riser seen

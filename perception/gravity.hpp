@@ -9,8 +9,9 @@
 
 namespace stairs {
 
-// Up in the optical frame (thesis 3.5): the segment normal near image up with the most parallel
-// support; near the previous frame's up when given. Of the set's members (with a prior, of every
+// Up in the optical frame (thesis 3.5): the segment normal near image up (near the previous up
+// instead, when given: a camera looking straight down sees the treads face-on) with the most parallel
+// support. Of the set's members (with a prior, of every
 // plane near it), the one most planes agree with (parallel or perpendicular within consensus_deg)
 // chooses the treads that up is fitted to: least squares, each weighted by how well its fit knows
 // its normal (thesis Algorithm 4 weights by support alone). Segments marked bent

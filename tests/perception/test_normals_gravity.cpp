@@ -247,6 +247,18 @@ TEST(PerceptionGravity, PriorTellsTreadsFromDominantRisers) {
   EXPECT_GT(tracked->dot(true_up(15)), std::cos(0.1 * M_PI / 180));
 }
 
+// A robot tipping over a nosing looks 88 deg down for a frame: the treads face the camera, more than
+// max_tilt_from_image_up_deg (80) from image up. Without a prior nothing tells them from a wall
+// ahead; with the previous frame's up (76 deg down) they are up, not the prior kept (a Kinect v1
+// robot's descent: that frame's rises 13 cm for 18, three false steps).
+TEST(PerceptionGravity, APriorLetsACameraLookingStraightDownFindTheTreads) {
+  const auto segs = stair_segments(-88, 10000, 0, 0);
+  EXPECT_FALSE(estimate_up(segs, GravityConfig{}).has_value());
+  const auto up = estimate_up(segs, GravityConfig{}, true_up(-76));
+  ASSERT_TRUE(up.has_value());
+  EXPECT_GT(up->dot(true_up(-88)), std::cos(0.1 * M_PI / 180));
+}
+
 TEST(PerceptionGravity, VerticalPlanesFixUpWhenTreadsAreMissing) {
   const auto segs = stair_segments(15, 0, 10000, 3000);
   const auto up = estimate_up(segs, GravityConfig{}, true_up(9));
