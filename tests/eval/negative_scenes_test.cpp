@@ -5,6 +5,7 @@
 #include "common/frame_source.hpp"
 #include "drivers/sim/furniture.hpp"
 #include "drivers/sim/render.hpp"
+#include "drivers/sim/sensor.hpp"
 #include "drivers/sim/trajectory.hpp"
 #include "perception/pipeline.hpp"
 #include "tracker/tracker.hpp"
@@ -40,16 +41,26 @@ class System {
   Tracker tracker_;
 };
 
-Outcome walk(const std::string& family, sim::Carrier carrier, uint64_t seed) {
-  const sim::Scene scene = sim::furniture_scene(family, seed);
-  sim::TrajectoryConfig tc = sim::trajectory_defaults(carrier);
-  if (carrier == sim::Carrier::HandHeld) {
-    tc.height_m = 1.4;  // standing height, looking ahead and down
-    tc.pitch_deg = -30;
+// One walk towards a family's furniture: the carrier's defaults, hand-held at `height_m` looking
+// `pitch_deg` down, seen through `sensor` (stairs-sim's preset) at its native resolution.
+struct Walk {
+  sim::Carrier carrier;
+  uint64_t seed;
+  const char* sensor = "kinect1";
+  double height_m = 1.4, pitch_deg = -30;  // hand-held: standing height, looking ahead and down
+};
+
+Outcome walk(const std::string& family, const Walk& w) {
+  const sim::Scene scene = sim::furniture_scene(family, w.seed);
+  sim::TrajectoryConfig tc = sim::trajectory_defaults(w.carrier);
+  if (w.carrier == sim::Carrier::HandHeld) {
+    tc.height_m = w.height_m;
+    tc.pitch_deg = w.pitch_deg;
   }
   tc.fps = 10;
   const sim::Trajectory traj(scene, tc);
-  sim::Renderer renderer(scene, Intrinsics{640, 480, 525.0, 525.0, 319.5, 239.5}, sim::SensorModel{}, seed);
+  const sim::SensorModel sensor = sim::sensor_preset(w.sensor);
+  sim::Renderer renderer(scene, sim::sensor_intrinsics(sensor.kind), sensor, w.seed);
   System system;
   Outcome out;
   for (int i = 0; i < traj.frames(); ++i)
@@ -59,11 +70,15 @@ Outcome walk(const std::string& family, sim::Carrier carrier, uint64_t seed) {
 
 class NegativeScenes : public ::testing::TestWithParam<std::string> {};
 
+// Kinect v1 hand-held and on a robot, and a Kinect v2 on a robot, where fresh random walks found
+// a staircase (issue 14: a chair's back, a table's edge and the seat, seen from below, as a flight
+// going down).
 TEST_P(NegativeScenes, NoStaircaseInAnyFrameAndAnEmptyModel) {
-  for (const auto& [carrier, seed] : {std::pair{sim::Carrier::HandHeld, 1}, {sim::Carrier::HandHeld, 2},
-                                      {sim::Carrier::Robot, 1}}) {
-    const Outcome o = walk(GetParam(), carrier, seed);
-    const std::string what = GetParam() + " " + sim::carrier_name(carrier) + " seed " + std::to_string(seed);
+  for (const Walk& w : {Walk{sim::Carrier::HandHeld, 1}, Walk{sim::Carrier::HandHeld, 2}, Walk{sim::Carrier::Robot, 1},
+                        Walk{sim::Carrier::Robot, 3, "kinect2"}}) {
+    const Outcome o = walk(GetParam(), w);
+    const std::string what = GetParam() + " " + sim::carrier_name(w.carrier) + " " + w.sensor + " seed " +
+                             std::to_string(w.seed);
     EXPECT_GT(o.frames, 20) << what;
     EXPECT_EQ(o.frames_with_stairs, 0) << what << ": first false frame: " << o.first_status;
     EXPECT_EQ(o.model_steps, 0u) << what;
