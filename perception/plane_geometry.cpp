@@ -362,20 +362,17 @@ PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Ei
   // Rows by index bounds: row > margin is index >= (margin + 1) * width (no division per cell).
   const int margin = g.margin_cells + 1;
   const int below_top = (margin + 1) * g.width, above_bottom = (g.height - 1 - margin) * g.width;
-  for (size_t k = 0; k < cells.size() && e.top_in_view; ++k)
-    e.top_in_view = x.zs[k] < e.z_max - cfg.view_edge_band_m || cells[k] >= below_top;
   // Nor is a riser's top in view where a nearer surface stands just above it in the image: the view of
   // it stops there (a table's far edge before a sofa's front made a 0.23 m "riser" and a false step).
   // Above a real riser's top lies its tread or the next riser, both farther.
-  if (face_band && e.top_in_view) {
-    int top = 0, hidden = 0;
-    for (size_t k = 0; k < cells.size(); ++k) {
-      if (x.zs[k] < e.z_max - cfg.view_edge_band_m) continue;
-      ++top;
-      hidden += nearer_just_above(g, cells[k], cfg.occluder_min_gap_m);
-    }
-    e.top_in_view = hidden <= cfg.occluded_top_fraction * top;
+  int top_cells = 0, hidden = 0;
+  for (size_t k = 0; k < cells.size() && e.top_in_view; ++k) {
+    if (x.zs[k] < e.z_max - cfg.view_edge_band_m) continue;
+    e.top_in_view = cells[k] >= below_top;
+    ++top_cells;
+    if (face_band) hidden += nearer_just_above(g, cells[k], cfg.occluder_min_gap_m);
   }
+  if (face_band && e.top_in_view) e.top_in_view = hidden <= cfg.occluded_top_fraction * top_cells;
   // Nor is its bottom in view where the depth below it ends (a time-of-flight
   // sensor's minimum range, dropout): the plane is cut there, not ended (a
   // robot's Kinect v2 measured an 8 cm first rise from a riser whose lower

@@ -41,21 +41,20 @@ class System {
   Tracker tracker_;
 };
 
-// One walk towards a family's furniture: the carrier's defaults, hand-held at `height_m` looking
-// `pitch_deg` down, seen through `sensor` (stairs-sim's preset) at its native resolution.
+// One walk towards a family's furniture, hand-held at standing height or at a robot's, seen through
+// `sensor` (stairs-sim's preset) at its native resolution.
 struct Walk {
   sim::Carrier carrier;
   uint64_t seed;
   const char* sensor = "kinect1";
-  double height_m = 1.4, pitch_deg = -30;  // hand-held: standing height, looking ahead and down
 };
 
 Outcome walk(const std::string& family, const Walk& w) {
   const sim::Scene scene = sim::furniture_scene(family, w.seed);
   sim::TrajectoryConfig tc = sim::trajectory_defaults(w.carrier);
   if (w.carrier == sim::Carrier::HandHeld) {
-    tc.height_m = w.height_m;
-    tc.pitch_deg = w.pitch_deg;
+    tc.height_m = 1.4;  // standing height, looking ahead and down
+    tc.pitch_deg = -30;
   }
   tc.fps = 10;
   const sim::Trajectory traj(scene, tc);
