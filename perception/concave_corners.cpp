@@ -41,9 +41,14 @@ void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConf
   // Decided on the planes as grown, applied after: a refit does not move another's band.
   std::vector<std::pair<size_t, Segment>>& refits = scratch.refits;
   refits.clear();
+  // Whether each segment's band showed multipath; and the segments lying mostly inside one
+  // partner's band, whose own cells cannot show a bend (nothing outside the band to fit).
+  scratch.shows_bend.assign(segments.size(), 0);
+  scratch.inside_band_of.clear();
   for (size_t a = 0; a < segments.size(); ++a) {
     Segment& sa = segments[a];
     partners.clear();
+    scratch.partner_of.clear();
     for (size_t b = 0; b < segments.size(); ++b) {
       const Segment& sb = segments[b];
       if (a == b || std::abs(sa.normal.dot(sb.normal)) > cos_corner) continue;
@@ -56,6 +61,7 @@ void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConf
       const auto [blo, bhi] = distance_range(boxes[b], sa.normal, sa.centroid);
       if (alo > d || ahi < -d || blo > d || bhi < -d) continue;
       partners.emplace_back(sb.normal.x(), sb.normal.y(), sb.normal.z(), -sb.normal.dot(sb.centroid));
+      scratch.partner_of.push_back(b);
     }
     if (partners.empty()) continue;
     // The band: the cells within d of a partner's plane (the corner's line
@@ -71,10 +77,16 @@ void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConf
       const Eigen::Vector3f& p = g.points[sa.cells[k]];
       x[k] = p.x(), y[k] = p.y(), z[k] = p.z();
     }
-    for (const Eigen::Vector4f& q : partners) {
+    for (size_t i = 0; i < partners.size(); ++i) {
+      const Eigen::Vector4f& q = partners[i];
       const float qx = q.x(), qy = q.y(), qz = q.z(), qw = q.w();
-      for (size_t k = 0; k < n; ++k)
-        in[k] |= static_cast<uint8_t>(std::abs(qx * x[k] + qy * y[k] + qz * z[k] + qw) < d);
+      size_t near = 0;
+      for (size_t k = 0; k < n; ++k) {
+        const bool b = std::abs(qx * x[k] + qy * y[k] + qz * z[k] + qw) < d;
+        in[k] |= static_cast<uint8_t>(b);
+        near += b;
+      }
+      if (near > (1.0f - cfg.min_core_fraction) * n) scratch.inside_band_of.emplace_back(a, scratch.partner_of[i]);
     }
     PlaneSums band;
     for (size_t k = 0; k < n; ++k)
@@ -93,14 +105,26 @@ void fit_away_from_concave_corners(const NormalGrid& g, const ConcaveCornersConf
     const Eigen::Vector3d band_mean = band.sum / band.n;
     const double behind = -core.normal.cast<double>().dot(band_mean - core.centroid.cast<double>());
     const double noise = cfg.behind_rms * core.rms_m;
-    if (core.rms_m >= sa.rms_m || behind < std::max(static_cast<double>(cfg.min_behind_m), noise)) continue;
+    // min_behind_m is a depth, and depth errors lie along the ray (multipath lengthens the path):
+    // a tread seen 13 deg edge-on shows a band 6 mm behind along the ray as 1.3 mm along its normal.
+    constexpr double kMinCosIncidence = 0.05;  // 87 deg: no surface is seen flatter
+    const double cos_incidence =
+        std::max(kMinCosIncidence, std::abs(core.normal.cast<double>().dot(band_mean.normalized())));
+    if (core.rms_m >= sa.rms_m || behind < noise || behind / cos_incidence < cfg.min_behind_m) continue;
     // Bent, and too little of it outside the bands to stand for its plane.
+    scratch.shows_bend[a] = 1;
     if (left < cfg.min_core_fraction * sa.sums.n) {
       sa.bent = true;
       continue;
     }
     refits.emplace_back(a, core);
   }
+  // A plane lying along one corner, inside its band (a robot looking up a flight sees the last
+  // centimetres of the tread ahead, edge-on, before the next riser), is bent where the corner shows
+  // multipath on its other face: its tilt across the corner is the bias's (2 deg), not the tread's.
+  // A corner without multipath (structured light, stereo) leaves it its fit.
+  for (const auto& [a, b] : scratch.inside_band_of)
+    if (scratch.shows_bend[b]) segments[a].bent = true;
   for (const auto& [a, core] : refits) {
     Segment& sa = segments[a];
     sa.centroid = core.centroid;

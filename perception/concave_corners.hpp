@@ -22,7 +22,9 @@ namespace stairs {
 // behind the plane fitted to the remaining cells by more than their scatter,
 // and that plane is the flatter, it replaces the segment's plane (a
 // structured-light or stereo plane keeps its fit); such a segment with too few
-// cells outside its bands is marked `bent` instead.
+// cells outside its bands is marked `bent` instead, as is a segment lying mostly
+// inside one partner's band where that partner's band showed the bend (the
+// corner has multipath; the segment's own cells cannot tell).
 // Segments keep their cells and sums. One pass over each cornered segment's
 // cells; the plane without the band is the sums' difference.
 struct ConcaveCornersScratch {  // reused across frames
@@ -31,6 +33,9 @@ struct ConcaveCornersScratch {  // reused across frames
   };
   std::vector<Box> boxes;                      // per segment
   std::vector<Eigen::Vector4f> partners;  // planes as (normal, offset): n.p + w is the distance
+  std::vector<size_t> partner_of;              // the segment of each partner
+  std::vector<uint8_t> shows_bend;             // per segment: its band lay behind its plane
+  std::vector<std::pair<size_t, size_t>> inside_band_of;  // (segment, partner): mostly in that band
   std::vector<std::pair<size_t, Segment>> refits;
   std::vector<float> x, y, z;    // one segment's cells, contiguous
   std::vector<uint8_t> in_band;  // per cell of that segment

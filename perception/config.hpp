@@ -42,8 +42,9 @@ struct VerificationConfig {
   float min_width_ratio = 0.6f;       // narrower / wider tread width when the narrower one is uncut
   float min_lateral_overlap = 0.5f;   // of the narrower tread's width, consecutive treads overlap
   float max_riser_yaw_spread_deg = 8.0f;  // deg; segmented risers of one flight are this parallel
-  float rise_tolerance_m = 0.05f;     // m; a measured rise this far from the median is irregular (old
-                                      // flights' construction tolerance plus noise at range)
+  float rise_tolerance_m = 0.05f;     // m; a measured rise this far from the median (of two: from the
+                                      // other) is irregular (old flights' construction tolerance plus noise
+                                      // at range)
   float run_tolerance_m = 0.07f;      // m; a measured run this far from the median is irregular
   float rise_outlier_m = 0.08f;       // m; one rise may deviate this much when enough others agree
   float run_outlier_m = 0.12f;        // m; likewise one run
@@ -177,11 +178,12 @@ struct RegionGrowingConfig {
 struct ConcaveCornersConfig {
   float band_m = 0.08f;                // m; a corner's band: multipath bias falls off over about this (0 = off)
   float min_corner_angle_deg = 45.0f;  // deg; planes meeting at least this steeply form a corner
-  float min_behind_m = 0.002f;         // m; band mean behind the rest of the plane that counts as bent
+  float min_behind_m = 0.002f;         // m; band mean behind the rest of the plane, along the view ray
+                                       // (depth errors lie along it), that counts as bent
   float behind_rms = 1.5f;             // and more than this many times the rest's rms residual (Kinect v2
                                        // multipath: 2.6-6.4; structured light at 3 m: 0.8-1.0)
   float min_core_fraction = 0.3f;      // a bent plane with less outside its bands is marked bent: not used
-                                       // for gravity
+                                       // for gravity (also one with less outside a corner's band that bends)
 
   template <class V>
   void visit(V& v) {

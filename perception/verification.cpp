@@ -197,9 +197,12 @@ void irregular(const std::vector<std::pair<size_t, double>>& values, double tole
   std::vector<double> v;
   for (const auto& kv : values) v.push_back(kv.second);
   const double m = median(v);
+  // Two values: their median is their mean, and each lies within `tolerance` of it up to twice the
+  // tolerance apart; neither is the flight's, so both fail where they differ by more than it.
+  const bool two_disagree = values.size() == 2 && std::abs(v[0] - v[1]) > tolerance;
   std::vector<std::pair<size_t, double>> off;
   for (const auto& [k, x] : values)
-    if (std::abs(x - m) > tolerance) off.emplace_back(k, x - m);
+    if (std::abs(x - m) > tolerance || two_disagree) off.emplace_back(k, x - m);
   const int regular = static_cast<int>(values.size() - off.size());
   if (off.size() == 1 && regular >= regular_needed && std::abs(off[0].second) <= outlier) return;
   const std::string why = std::string(what) + " irregular vs. the median (m)";

@@ -110,7 +110,9 @@ TEST(PerceptionEdgesDepthJumps, AFarFloorAtAGrazingAngleIsNoNosing) {
     }
     for (int gx = 0; gx < grid.width; ++gx) top_row_points += grid.has_point[grid.index(gx, 0)];
     ASSERT_GT(steep, 3) << pitch;
-    if (pitch < -30) ASSERT_GT(top_row_points, grid.width / 2) << "the floor reaches the top border";
+    if (pitch < -30) {
+      ASSERT_GT(top_row_points, grid.width / 2) << "the floor reaches the top border";
+    }
     EXPECT_TRUE(depth_jump_edges(grid, img, R, 0.0f, cfg.edges_depth_jumps, cfg.stair.min_step_width_m).empty())
         << pitch;
   }

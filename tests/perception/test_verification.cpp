@@ -10,15 +10,15 @@
 namespace stairs {
 namespace {
 
-// Two steps of 0.17 m rise and 0.28 m run, 1.0 m wide, their fronts 2.0 m
-// ahead of a camera 1.4 m high pitched 35 deg down.
-Observation two_steps() {
+// Two steps of `first_m` and `second_m` rise (0.17 m each by default) and 0.28 m run, 1.0 m wide,
+// their fronts 2.0 m ahead of a camera 1.4 m high pitched 35 deg down.
+Observation two_steps(double first_m = 0.17, double second_m = 0.17) {
   sim::Scene s;
   s.kind = sim::SceneKind::FlatRoom;
   s.walls = sim::Walls::None;
   s.flat_length_m = 5.0;
   for (int k = 0; k < 2; ++k) {
-    const double x0 = 2.0 + 0.28 * k, top = 0.17 * (k + 1);
+    const double x0 = 2.0 + 0.28 * k, top = k == 0 ? first_m : first_m + second_m;
     s.boxes.push_back({{x0, -0.5, 0.0}, {x0 + 0.28 * (2 - k), 0.5, top}});
   }
   const Intrinsics K{640, 480, 525.0, 525.0, 319.5, 239.5};
@@ -37,6 +37,18 @@ TEST(PerceptionVerification, ASolidFlightIsAStaircase) {
       EXPECT_NEAR(*st.riser_height_m, 0.17, 0.01);
     }
   }
+}
+
+// Two measured rises 9 cm apart are no flight, though each lies within rise_tolerance_m (5 cm) of
+// their mean: a kitchen's chair back, table top and seat, seen from above, came out as rises of
+// 17.6 and 27 cm. Two that differ by less than the tolerance are one.
+TEST(PerceptionVerification, TwoMeasuredRisesThatDisagreeAreNoFlight) {
+  const Observation odd = two_steps(0.15, 0.24);
+  EXPECT_TRUE(odd.steps.empty()) << odd.status;
+  EXPECT_NE(odd.status.find("rise irregular"), std::string::npos) << odd.status;
+  const Observation regular = two_steps(0.17, 0.20);
+  EXPECT_EQ(regular.steps.size(), 2u) << regular.status;
+  for (const Step& st : regular.steps) EXPECT_FALSE(st.inferred & kStepRiserInferred);
 }
 
 // A kitchen table with chairs (stairs-sim's kitchen_table, seed 2) seen from
