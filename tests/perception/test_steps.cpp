@@ -398,6 +398,33 @@ TEST(PerceptionSteps, SingleCurbIsNoStaircase) {
   EXPECT_TRUE(o.steps.empty());
 }
 
+// Seen steeply from above (a D435 hand-held at 0.6 m), a riser ends 8.5 cm below its tread: the
+// nosing's slab and the hole at its edge hide the rest. A tread whose front edge stands at the
+// riser's face is that riser's own, whatever of the riser lies hidden below it (up to a rise): the
+// riser's visible top is no level (it made an 8.5 cm and a 25.5 cm step of two 17 cm ones). The top
+// of a riser whose tread starts a run behind it (the next step's) stays a level.
+TEST(PerceptionSteps, ARisersTopHiddenUnderItsTreadsNosingIsNoLevel) {
+  PlaneSet ps;
+  add_plane(ps, PlaneKind::Tread, {0.30f, 0.58f, -0.7f, 0.4f, -0.845f, -0.845f, 0.44f, -0.845f});
+  add_plane(ps, PlaneKind::Riser, {0.60f, 0.60f, -0.7f, 0.4f, -0.845f, -0.760f, 0.60f, -0.80f});
+  add_plane(ps, PlaneKind::Tread, {0.59f, 0.85f, -0.7f, 0.4f, -0.675f, -0.675f, 0.72f, -0.675f});
+  add_plane(ps, PlaneKind::Riser, {0.88f, 0.88f, -0.7f, 0.4f, -0.675f, -0.505f, 0.88f, -0.59f});
+  add_plane(ps, PlaneKind::Tread, {0.88f, 1.12f, -0.7f, 0.4f, -0.505f, -0.505f, 1.0f, -0.505f});
+  const StairConfig cfg;
+  std::vector<float> z;
+  for (const Level& l : tread_levels(ps, {}, cfg)) z.push_back(l.z);
+  EXPECT_EQ(z, (std::vector<float>{-0.845f, -0.675f, -0.505f}));
+  const StairChain chain = best_chain(tread_levels(ps, {}, cfg), cfg);
+  ASSERT_EQ(chain.levels.size(), 3u);
+  EXPECT_NEAR(chain.levels[1].z - chain.levels[0].z, 0.17f, 1e-5);
+  // The middle tread unseen: the lower riser's top is the next level (its own tread's front).
+  PlaneSet edge_on = ps;
+  edge_on.extents[2].t_max = edge_on.extents[2].t_min + 0.5f * cfg.min_step_width_m;  // too narrow for a level
+  z.clear();
+  for (const Level& l : tread_levels(edge_on, {}, cfg)) z.push_back(l.z);
+  EXPECT_EQ(z, (std::vector<float>{-0.845f, -0.760f, -0.505f}));
+}
+
 // A robot's camera below 3 cm nosings: a riser's upper part, merged with its nosing's slab, is
 // fitted tilted (no riser's plane) and reaches up to the image's top; its lower part is a riser of its
 // own, 4.5 cm tall. That part's top is no nosing: the face goes on above it (a 9 cm "rise" and a false
