@@ -16,28 +16,39 @@ namespace {
 
 constexpr double kPitch = -35, kHeight = 1.0, kFirstRiser = 1.2, kRiser = 0.17, kTread = 0.28;
 
-// The stair of test::render_stairs with every tread's depth lengthened within
-// band_m of the riser above it: bias_m at the corner, falling linearly to 0
-// (stairs-sim's Kinect v2 model, drivers/sim/sensor.cpp apply_multipath).
-DepthImage stairs_with_multipath(double bias_m, double band_m) {
-  DepthImage img = test::render_stairs(640, 480, kPitch, 0, kHeight, 3, kFirstRiser, kRiser, kTread);
-  const Eigen::Matrix3d R = test::optical_to_world(kPitch, 0);
+// A camera over test::render_stairs' flight: pitch (deg), height over the floor, first riser (m).
+struct View {
+  double pitch_deg, height_m, first_riser_m;
+};
+constexpr View kView{kPitch, kHeight, kFirstRiser};
+
+// test::render_stairs seen from `w`, each ray within band_m of a concave corner lengthened by bias_m
+// at the corner, falling linearly to 0 (stairs-sim's Kinect v2 model, drivers/sim/sensor.cpp
+// apply_multipath): on the tread (or floor) before each riser, and with `on_risers` on the riser
+// above the tread too.
+DepthImage with_multipath(const View& w, double bias_m, double band_m, bool on_risers) {
+  DepthImage img = test::render_stairs(640, 480, w.pitch_deg, 0, w.height_m, 3, w.first_riser_m, kRiser, kTread);
+  if (bias_m <= 0) return img;
+  const Eigen::Matrix3d R = test::optical_to_world(w.pitch_deg, 0);
   for (int v = 0; v < img.K.height; ++v)
     for (int u = 0; u < img.K.width; ++u) {
       uint16_t& mm = img.depth[static_cast<size_t>(v) * img.K.width + u];
       if (mm == 0) continue;
       const double z = mm / 1000.0;
       const Eigen::Vector3d p = R * Eigen::Vector3d((u - img.K.cx) / img.K.fx * z, (v - img.K.cy) / img.K.fy * z, z);
-      // A tread (or the floor) at level k, whose riser above stands at x_k.
-      const double level = (p.z() + kHeight) / kRiser;
-      const int k = static_cast<int>(std::lround(level));
-      if (std::abs(level - k) > 0.02 || k > 2) continue;
-      const double to_corner = kFirstRiser + k * kTread - p.x();
-      if (to_corner >= 0 && to_corner < band_m)
-        mm = static_cast<uint16_t>(std::lround(mm + 1000 * bias_m * (1 - to_corner / band_m)));
+      const double level = (p.z() + w.height_m) / kRiser;
+      double to_corner = band_m;
+      for (int k = 0; k < 3; ++k) {  // level k meets the riser at x_k
+        const double x_k = w.first_riser_m + k * kTread, z_k = -w.height_m + k * kRiser;
+        if (std::abs(level - k) <= 0.02 && p.x() <= x_k) to_corner = std::min(to_corner, x_k - p.x());
+        if (on_risers && std::abs(p.x() - x_k) < 0.003 && p.z() >= z_k) to_corner = std::min(to_corner, p.z() - z_k);
+      }
+      if (to_corner < band_m) mm = static_cast<uint16_t>(std::lround(mm + 1000 * bias_m * (1 - to_corner / band_m)));
     }
   return img;
 }
+
+DepthImage stairs_with_multipath(double bias_m, double band_m) { return with_multipath(kView, bias_m, band_m, false); }
 
 Eigen::Vector3f true_up() {
   return (test::optical_to_world(kPitch, 0).transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
@@ -103,30 +114,9 @@ TEST(PerceptionConcaveCorners, PlanesWithoutABentBandKeepTheirFit) {
 // last 8 cm before the next riser, edge-on (13 deg), all of it inside the corner's multipath band.
 constexpr double kLowHeight = 0.27, kLowPitch = 11.2, kLowFirstRiser = 0.22;
 
-// test::render_stairs from that camera; with `bias_m`, a time-of-flight camera's multipath
-// lengthens each ray within `band_m` of a concave corner, on both of its faces: the tread before a
-// riser and the riser above the tread (stairs-sim's Kinect v2 model).
+// Seen from it by a time-of-flight camera (`bias_m` > 0): multipath on both faces of each corner.
 DepthImage low_view(double bias_m, double band_m) {
-  DepthImage img = test::render_stairs(640, 480, kLowPitch, 0, kLowHeight, 3, kLowFirstRiser, kRiser, kTread);
-  if (bias_m <= 0) return img;
-  const Eigen::Matrix3d R = test::optical_to_world(kLowPitch, 0);
-  for (int v = 0; v < img.K.height; ++v)
-    for (int u = 0; u < img.K.width; ++u) {
-      uint16_t& mm = img.depth[static_cast<size_t>(v) * img.K.width + u];
-      if (mm == 0) continue;
-      const double z = mm / 1000.0;
-      const Eigen::Vector3d p = R * Eigen::Vector3d((u - img.K.cx) / img.K.fx * z, (v - img.K.cy) / img.K.fy * z, z);
-      const double level = (p.z() + kLowHeight) / kRiser;
-      double to_corner = band_m;
-      for (int k = 0; k < 3; ++k) {  // the corner of level k and the riser at x_k
-        const double x_k = kLowFirstRiser + k * kTread, z_k = -kLowHeight + k * kRiser;
-        if (std::abs(level - std::lround(level)) < 0.02 && std::lround(level) == k && p.x() <= x_k + 1e-3)
-          to_corner = std::min(to_corner, x_k - p.x());  // on the level, before the riser
-        if (std::abs(p.x() - x_k) < 0.003 && p.z() >= z_k) to_corner = std::min(to_corner, p.z() - z_k);  // on the riser
-      }
-      if (to_corner < band_m) mm = static_cast<uint16_t>(std::lround(mm + 1000 * bias_m * (1 - to_corner / band_m)));
-    }
-  return img;
+  return with_multipath({kLowPitch, kLowHeight, kLowFirstRiser}, bias_m, band_m, true);
 }
 
 Eigen::Vector3f low_up() {
