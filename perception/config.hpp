@@ -447,6 +447,10 @@ struct StairConfig {
   float max_level_gap_m = 0.3f;      // m; a level ends this close to where the next one starts (the riser
                                      // between, its occluded strip)
 
+  // The lowest and highest rise the grammar accepts: DIN's bounds widened by din_tolerance.
+  float lowest_rise_m() const { return riser_min_m * (1 - din_tolerance); }
+  float highest_rise_m() const { return riser_max_m * (1 + din_tolerance); }
+
   template <class V>
   void visit(V& v) {
     v("riser_min_m", riser_min_m, 0.0f, 1.0f);

@@ -7,7 +7,7 @@
 namespace stairs {
 
 bool din_riser_ok(double r, const StairConfig& c) {
-  return r >= c.riser_min_m * (1 - c.din_tolerance) && r <= c.riser_max_m * (1 + c.din_tolerance);
+  return r >= c.lowest_rise_m() && r <= c.highest_rise_m();
 }
 bool din_tread_ok(double t, const StairConfig& c) {
   return t >= c.tread_min_m * (1 - c.din_tolerance) && t <= c.tread_max_m * (1 + c.din_tolerance);

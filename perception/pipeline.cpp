@@ -167,7 +167,7 @@ Observation Pipeline::process(const DepthImage& frame) {
   std::string refuted;
   if (static_cast<int>(steps.size()) >= cfg_.stair.min_steps) {
     const Verdict verdict = verify(grid_, frame.K, R, ps, chain.direction, steps, cfg_.verification,
-                                   cfg_.stair.riser_max_m * (1 + cfg_.stair.din_tolerance));
+                                   cfg_.stair.highest_rise_m());
     steps.resize(verdict.kept);
     refuted = verdict.reason;
   }

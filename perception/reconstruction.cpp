@@ -99,7 +99,7 @@ void complete_ascending(const PlaneSet& ps, const StairChain& chain, std::vector
     // bounds is no step's (a wall, a cabinet), and neither is one cut by the view
     // whose seen part alone is taller than any riser (a landing's back wall).
     // A cut one's height is the median, flagged.
-    if (e.top_in_view ? !din_riser_ok(seen, cfg) : top_is_landing || seen > cfg.riser_max_m * (1 + cfg.din_tolerance))
+    if (e.top_in_view ? !din_riser_ok(seen, cfg) : top_is_landing || seen > cfg.highest_rise_m())
       return;
     Step s;
     s.riser_plane = r;

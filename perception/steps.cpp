@@ -66,7 +66,7 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   const float same_level = cfg.same_level_m, behind = cfg.riser_own_behind_m, ahead = cfg.riser_own_ahead_m;
   // A tread less than the lowest plausible rise above a riser's top is that
   // riser's own: a nosing overhang hides the riser's top under its slab.
-  const float min_rise_m = cfg.riser_min_m * (1 - cfg.din_tolerance);
+  const float min_rise_m = cfg.lowest_rise_m();
   // A riser at range splits across its width into fragments with one top:
   // they are one level, as wide as all of them together.
   std::vector<Level> tops;
@@ -89,7 +89,7 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   // highest rise: the riser's top lies hidden under its nosing, and seen from above at a steep angle
   // the slab and the shadow of its edge hide more than the lowest rise (a D435 at 0.6 m saw a riser
   // end 8.5 cm below its tread, and that "level" made an 8.5 cm and a 25.5 cm step of two 17 cm ones).
-  const float max_rise_m = cfg.riser_max_m * (1 + cfg.din_tolerance);
+  const float max_rise_m = cfg.highest_rise_m();
   for (const Level& top : tops) {
     if (top.t_max - top.t_min < cfg.min_step_width_m) continue;
     bool seen = false;
