@@ -174,6 +174,31 @@ struct RegionGrowingConfig {
   }
 };
 
+// --- bridged surfaces (bridged_surfaces.hpp): plane fits away from a nosing slab grown into its riser
+struct BridgedSurfacesConfig {
+  float min_angle_deg = 1.5f;  // deg; a segment's cells' median normal this far from its fitted normal
+                               // may show a bridged surface (gravity.consensus_deg: a tilt that matters)
+  float cut_sigmas = 3.0f;     // cells farther than this many robust sigmas from the median plane are
+                               // another surface (a surface's own noise lies within)
+  float min_cut_m = 0.004f;    // m; never nearer than this: depth quantisation of near cells
+  float min_flatter = 2.0f;    // the rest must fit this many times flatter (rms) than the whole: trimming
+                               // noise changes the rms by 1.0-1.4, a bridged slab 3-13 times
+  float min_across_cuts = 2.0f;  // a segment narrower across (std) than this many cuts is a line: no plane
+                                 // to recover (a tread's edge strip, 1.5-2.7 mm across)
+  float same_face_m = 0.05f;     // m; cells off the plane within this stay the segment's (a nosing slab's
+                                 // front, verification.max_nosing_overhang_m); farther ones leave it
+
+  template <class V>
+  void visit(V& v) {
+    v("min_angle_deg", min_angle_deg, 0.0f, 90.0f);
+    v("cut_sigmas", cut_sigmas, 0.5f, 100.0f);
+    v("min_cut_m", min_cut_m, 0.0f, 0.1f);
+    v("min_flatter", min_flatter, 1.0f, 100.0f);
+    v("min_across_cuts", min_across_cuts, 0.0f, 100.0f);
+    v("same_face_m", same_face_m, 0.0f, 1.0f);
+  }
+};
+
 // --- concave corners (concave_corners.hpp): plane fits away from time-of-flight multipath bands
 struct ConcaveCornersConfig {
   float band_m = 0.08f;                // m; a corner's band: multipath bias falls off over about this (0 = off)
@@ -496,6 +521,7 @@ struct OutputConfig {
 struct PerceptionConfig {
   NormalsConfig normals;
   RegionGrowingConfig region_growing;
+  BridgedSurfacesConfig bridged_surfaces;
   ConcaveCornersConfig concave_corners;
   GravityConfig gravity;
   ImuConfig imu;
@@ -512,6 +538,7 @@ struct PerceptionConfig {
   void visit(V& v) {
     v.section("normals", normals);
     v.section("region_growing", region_growing);
+    v.section("bridged_surfaces", bridged_surfaces);
     v.section("concave_corners", concave_corners);
     v.section("gravity", gravity);
     v.section("imu", imu);

@@ -80,6 +80,8 @@ Observation Pipeline::process(const DepthImage& frame) {
   clock.mark("region_growing");
   fit_away_from_concave_corners(grid_, cfg_.concave_corners, segments, corners_);
   clock.mark("concave_corners");
+  fit_away_from_bridged_surfaces(grid_, cfg_.bridged_surfaces, segments, bridged_);
+  clock.mark("bridged_surfaces");
   // The previous up is forgotten after a gap between frames (the camera may have been moved
   // anywhere meanwhile), not while frames keep coming whose planes do not measure it: it then bounds
   // the turn, as far as the camera may have swayed since (a level Kinect v2 descent's pitch, unmeasured

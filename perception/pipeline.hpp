@@ -3,6 +3,7 @@
 #pragma once
 
 #include "common/types.hpp"
+#include "perception/bridged_surfaces.hpp"
 #include "perception/concave_corners.hpp"
 #include "perception/config.hpp"
 #include "perception/imu_gravity.hpp"
@@ -32,6 +33,7 @@ class Pipeline {
   PerceptionConfig cfg_;
   NormalGrid grid_;          // reused buffers
   std::vector<int> labels_;  // reused buffers
+  BridgedSurfacesScratch bridged_;  // reused buffers
   ConcaveCornersScratch corners_;  // reused buffers
   std::optional<Eigen::Vector3f> up_prior_;  // optical frame: the last frame's up that had one
   int64_t last_utime_ = 0;      // the previous usable frame's

@@ -71,9 +71,14 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   // they are one level, as wide as all of them together.
   std::vector<Level> tops;
   const float near = cfg.riser_at_nosing_m;
+  const float max_rise_m = cfg.highest_rise_m();
   for (size_t i = 0; i < ps.planes.size(); ++i) {
     const PlaneExtent& e = ps.extents[i];
     if (ps.planes[i].kind != PlaneKind::Riser || !e.top_in_view || face_goes_on_above(ps, i, cfg)) continue;
+    // A riser spans one rise: a face taller than the highest is a wall or a cabinet's front, and its
+    // top no tread's front (a D435 robot's room: the back wall at 5 m in two fragments, 1.05 and 1.15 m
+    // tall where its depth gave out, made a two-step flight of their tops).
+    if (e.z_max - e.z_min > max_rise_m + same_level) continue;
     auto same = std::find_if(tops.begin(), tops.end(), [&](const Level& l) {
       return std::abs(l.z - e.z_max) < same_level && std::abs(l.s_min - e.s_mean) < near &&
              std::max(l.t_min, e.t_min) - std::min(l.t_max, e.t_max) < near;
@@ -89,7 +94,6 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
   // highest rise: the riser's top lies hidden under its nosing, and seen from above at a steep angle
   // the slab and the shadow of its edge hide more than the lowest rise (a D435 at 0.6 m saw a riser
   // end 8.5 cm below its tread, and that "level" made an 8.5 cm and a 25.5 cm step of two 17 cm ones).
-  const float max_rise_m = cfg.highest_rise_m();
   for (const Level& top : tops) {
     if (top.t_max - top.t_min < cfg.min_step_width_m) continue;
     bool seen = false;

@@ -237,9 +237,10 @@ TEST(PerceptionSteps, SyntheticAscendingStairsEndToEnd) {
   }
   EXPECT_GE(treads, 4);
   // The normal-image edges are a diagnostic, off by default: no stage of theirs.
-  const std::vector<std::string> names = {"normals",        "region_growing", "concave_corners", "gravity",
-                                          "plane_geometry", "edges_depth_jumps", "steps",        "grammar",
-                                          "reconstruction", "verification"};
+  const std::vector<std::string> names = {"normals",           "region_growing", "concave_corners",
+                                          "bridged_surfaces",  "gravity",        "plane_geometry",
+                                          "edges_depth_jumps", "steps",          "grammar",
+                                          "reconstruction",    "verification"};
   ASSERT_EQ(o.stages.size(), names.size());
   for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(o.stages[i].name, names[i]);
 }
@@ -423,6 +424,28 @@ TEST(PerceptionSteps, ARisersTopHiddenUnderItsTreadsNosingIsNoLevel) {
   z.clear();
   for (const Level& l : tread_levels(edge_on, {}, cfg)) z.push_back(l.z);
   EXPECT_EQ(z, (std::vector<float>{-0.845f, -0.760f, -0.505f}));
+}
+
+// A face taller than the highest rise is no riser (a wall, a cabinet's front): its top is no tread's
+// front. A D435 robot saw a room's back wall at 5 m in two fragments, their tops where its depth
+// gave out (1.05 and 1.15 m tall), and their tops made a two-step flight. Faces one rise tall keep
+// their tops as levels.
+TEST(PerceptionSteps, ATopOfAFaceTallerThanARiseIsNoLevel) {
+  PlaneSet ps;
+  add_plane(ps, PlaneKind::Tread, {0.3f, 2.2f, -1.3f, 0.6f, -0.45f, -0.45f, 0.8f, -0.45f});
+  add_plane(ps, PlaneKind::Riser, {4.79f, 4.79f, -3.2f, -1.8f, -0.39f, 0.66f, 4.79f, 0.05f});
+  add_plane(ps, PlaneKind::Riser, {5.05f, 5.05f, -2.7f, 2.0f, -0.28f, 0.87f, 5.05f, 0.23f});
+  const StairConfig cfg;
+  std::vector<float> z;
+  for (const Level& l : tread_levels(ps, {}, cfg)) z.push_back(l.z);
+  EXPECT_EQ(z, (std::vector<float>{-0.45f}));
+  // One rise tall, the same faces' tops are the treads' fronts.
+  ps.extents[1].z_min = 0.66f - 0.17f;
+  ps.extents[2].z_min = 0.87f - 0.17f;
+  z.clear();
+  for (const Level& l : tread_levels(ps, {}, cfg)) z.push_back(l.z);
+  std::sort(z.begin(), z.end());
+  EXPECT_EQ(z, (std::vector<float>{-0.45f, 0.66f, 0.87f}));
 }
 
 // A robot's camera below 3 cm nosings: a riser's upper part, merged with its nosing's slab, is
