@@ -1,19 +1,11 @@
 #include "perception/bridged_surfaces.hpp"
 
+#include "common/median.hpp"
+
 #include <algorithm>
 #include <cmath>
 
 namespace stairs {
-
-namespace {
-
-float median_of(std::vector<float>& v) {
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
-
-}  // namespace
 
 void fit_away_from_bridged_surfaces(const NormalGrid& g, const BridgedSurfacesConfig& cfg,
                                     std::vector<Segment>& segments, BridgedSurfacesScratch& scratch) {
@@ -33,7 +25,7 @@ void fit_away_from_bridged_surfaces(const NormalGrid& g, const BridgedSurfacesCo
     for (int k = 0; k < 3; ++k) {
       v.clear();
       for (size_t i = 0; i < s.cells.size(); i += stride) v.push_back(g.normals[s.cells[i]][k]);
-      m[k] = median_of(v);
+      m[k] = median_in_place(v);
     }
     if (m.squaredNorm() < 0.25f) continue;  // the cells' normals disagree: no surface stands out
     m.normalize();
@@ -41,9 +33,9 @@ void fit_away_from_bridged_surfaces(const NormalGrid& g, const BridgedSurfacesCo
     r.clear();
     for (int c : s.cells) r.push_back(m.dot(g.points[c]));
     v = r;
-    const float offset = median_of(v);
+    const float offset = median_in_place(v);
     for (float& x : v) x = std::abs(x - offset);
-    const float cut = std::max(cfg.cut_sigmas * kMadToSigma * median_of(v), cfg.min_cut_m);
+    const float cut = std::max(cfg.cut_sigmas * kMadToSigma * median_in_place(v), cfg.min_cut_m);
     // A strip no wider across than a few times its scatter is a line: any plane through it fits,
     // the least-squares one and a refit alike (a tread's edge seen edge-on, turned 40 deg by a refit,
     // became a level with no depth and cost the frame its staircase).
@@ -75,16 +67,15 @@ void fit_away_from_bridged_surfaces(const NormalGrid& g, const BridgedSurfacesCo
     // and its top is the tread's. Farther ones are another surface (another step's face), and would
     // stretch the plane's extent over it.
     size_t kept = 0;
+    PlaneSums away;
     for (size_t i = 0; i < s.cells.size(); ++i) {
-      if (std::abs(r[i] - offset) <= cfg.same_face_m) {
+      if (std::abs(r[i] - offset) <= cfg.same_face_m)
         s.cells[kept++] = s.cells[i];
-      } else {
-        PlaneSums one;
-        one.add(g.points[s.cells[i]]);
-        s.sums = s.sums - one;
-      }
+      else
+        away.add(g.points[s.cells[i]]);
     }
     s.cells.resize(kept);
+    s.sums = s.sums - away;
   }
 }
 

@@ -1,4 +1,4 @@
-// Stage 2a: plane fits away from surfaces the region growing bridged. Under a
+// Stage 2c: plane fits away from surfaces the region growing bridged. Under a
 // nosing overhang the slab's front face stands a few centimetres in front of the
 // riser, parallel to it, and the cells across the slab's underside carry normals
 // close enough to both that one segment grows over riser and slab front: its
