@@ -277,6 +277,21 @@ std::optional<Registration> Tracker::on_planes_in_view(const Observation& obs, c
   return reg;
 }
 
+// The camera placed on a registration that is not merged (a frame perception found no staircase in,
+// or one the structure check turned down): the next prior starts from it. `uncertainty_m`: how far
+// off it may be beyond the registration's own uncertainty.
+void Tracker::place(const Observation& obs, const Registration& placed, const std::string& why, double uncertainty_m) {
+  // The end wall alone places it only as well as the wall itself is known.
+  const bool wall_only = placed.end_wall_inliers == placed.x_inliers;
+  model_.status = why + (wall_only ? "; camera placed on the model's end wall in view"
+                                   : "; camera placed on the model's risers or nosings in view");
+  placed_ = Accepted{obs.source_utime, placed.pose, to_base_m(obs)};
+  x_measured_utime_ = obs.source_utime;
+  x_measured_uncertainty_m_ = uncertainty_m + (wall_only ? map_.end_wall_uncertainty_m.value : 0.0);
+  if (!wall_only) note_end_wall(obs, placed.pose, x_measured_uncertainty_m_);
+  publish(obs, placed.pose, true, x_measured_uncertainty_m_);
+}
+
 // Nothing registered: the model's risers, nosings or end wall in view place the
 // camera while the prior that finds them is fresh (predict_camera_s since the
 // position along the stair was last measured, by a registration or by them: a
@@ -291,17 +306,7 @@ void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool wi
   const bool findable = obs.camera.valid && (with_odometry || since_measured_s <= config_.motion.predict_camera_s);
   const bool predicted = obs.camera.valid && (with_odometry || since_accept_s <= config_.motion.predict_camera_s);
   if (findable)
-    if (const auto placed = on_planes_in_view(obs, prior)) {
-      // The end wall alone places it only as well as the wall itself is known.
-      const bool wall_only = placed->end_wall_inliers == placed->x_inliers;
-      model_.status = why + (wall_only ? "; camera placed on the model's end wall in view"
-                                       : "; camera placed on the model's risers or nosings in view");
-      placed_ = Accepted{obs.source_utime, placed->pose, to_base_m(obs)};
-      x_measured_utime_ = obs.source_utime;
-      x_measured_uncertainty_m_ = wall_only ? map_.end_wall_uncertainty_m.value : 0.0;
-      if (!wall_only) note_end_wall(obs, placed->pose, 0.0);
-      return publish(obs, placed->pose, true, x_measured_uncertainty_m_);
-    }
+    if (const auto placed = on_planes_in_view(obs, prior)) return place(obs, *placed, why, 0.0);
   model_.status = !predicted      ? why
                   : with_odometry ? why + "; camera from odometry"
                                   : why + "; camera from the motion prior";
@@ -320,6 +325,13 @@ void Tracker::note_end_wall(const Observation& obs, const Pose4& pose, double pr
   stairs::note_end_wall(map_, obs, pose, prior_uncertainty_m + config_.registration.position_uncertainty_m,
                         config_.end_wall, config_.stair, config_.merge.max_average_weight,
                         config_.confirmation.min_confirmations);
+}
+
+// Whether `pose` is, of the poses a whole number of steps apart along the stair (which a periodic
+// flight cannot tell apart), the one nearest `prior`: less than half a step from it along the flight.
+bool Tracker::nearest_whole_step_shift(const Pose4& pose, const Pose4& prior) const {
+  const Eigen::Vector3d step(typical_tread_m(map_, config_.stair), 0.0, typical_riser_m(map_, config_.stair));
+  return std::abs((pose.t_m - prior.t_m).dot(step.normalized())) < 0.5 * step.norm();
 }
 
 void Tracker::track(const Observation& obs, bool with_odometry) {
@@ -402,7 +414,17 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
                                                     "along the stair unknown")
                                       : "registration rejected (inliers " + std::to_string(reg.inlier_ratio) +
                                             ", jump " + std::to_string(jump) + " m)";
-    if (!reseed(obs, why)) place_by_prior(obs, prior, with_odometry, since_accept_s, why);
+    if (reseed(obs, why)) return;
+    // All but the jump agree, and no other whole-step shift lies nearer the prior: the camera may
+    // have moved otherwise than the prior said (a robot's body rocking back over a nosing while the
+    // prior carried it on: 12 cm apart; placed by that prior, the next frame started 19 cm off and
+    // registered a whole step up). Not merged, as the check asks, but the camera is placed there, as
+    // uncertain as the two disagree, and the next frame starts from it: its registration must then
+    // agree with it within the prior's reach to be merged.
+    if (!relocalising && !x_unknown && reg.x_inliers > 0 && reg.inlier_ratio >= config_.motion.min_inlier_ratio &&
+        nearest_whole_step_shift(reg.pose, start_pose))
+      return place(obs, reg, why, jump);
+    place_by_prior(obs, prior, with_odometry, since_accept_s, why);
     return;
   }
   accept(obs, reg.pose, !dead_reckoned);

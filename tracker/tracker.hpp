@@ -44,6 +44,8 @@ class Tracker {
   std::string restart_if_time_went_back(int64_t utime);
   void drop_if_lost_long(const Observation& obs, bool with_odometry);
   void track(const Observation& obs, bool with_odometry);
+  void place(const Observation& obs, const Registration& placed, const std::string& why, double uncertainty_m);
+  bool nearest_whole_step_shift(const Pose4& pose, const Pose4& prior) const;
   void place_by_prior(const Observation& obs, const Pose4& prior, bool with_odometry, double since_accept_s,
                       const std::string& why);
   bool reseed(const Observation& obs, const std::string& why);

@@ -416,6 +416,32 @@ TEST(PerceptionGravity, ACarriedPitchIsThePriorsNotTheStripsThatCouldNotMeasureI
   EXPECT_GT(unknown->dot(strip.normal), std::cos(0.1 * M_PI / 180));
 }
 
+// A hand-held Kinect v1 at the top of a descent between two walls, the flight beyond the depth's
+// range: besides the walls, a 38-cell patch 4.5 m off facing the camera (1 cm rms over 5-8 cm), its
+// fit 11 deg off vertical. It was a second vertical family, and up the cross product of its normal
+// and the walls': the pitch 12 deg off, and the near landing made six steps. A plane that does not
+// know its normal to within consensus_deg stands for no family; a riser that does still fixes up.
+TEST(PerceptionGravity, APatchThatDoesNotKnowItsNormalIsNoVerticalFamily) {
+  const double pitch = -25.0;
+  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d tilted_face = Eigen::AngleAxisd(11.0 * M_PI / 180, Y) * -X;
+  std::vector<Segment> segs = {fitted_segment_at(pitch, Y, 9300, 0.51, 0.87, 0.0012f, 1.9f),
+                               fitted_segment_at(pitch, -Y, 4000, 0.53, 0.77, 0.0013f, 2.0f),
+                               fitted_segment_at(pitch, tilted_face, 38, 0.047, 0.077, 0.0103f, 4.45f)};
+  bool carried = false;
+  const auto up = estimate_up(segs, GravityConfig{}, true_up(pitch), &carried);
+  ASSERT_TRUE(up.has_value());
+  EXPECT_GT(up->dot(true_up(pitch)), std::cos(0.5 * M_PI / 180));
+  EXPECT_TRUE(carried);  // only the walls fix up: the pitch is the prior's, gravity.carry_max_s at most
+  // A riser 2 m off that knows its normal (600 cells, 2 mm rms over 5 x 30 cm) is a second family:
+  // it and the walls fix up, the prior 3 deg off.
+  segs.push_back(fitted_segment_at(pitch, -X, 600, 0.05, 0.3, 0.002f, 2.0f));
+  const auto fixed = estimate_up(segs, GravityConfig{}, true_up(pitch - 3.0), &carried);
+  ASSERT_TRUE(fixed.has_value());
+  EXPECT_GT(fixed->dot(true_up(pitch)), std::cos(0.2 * M_PI / 180));
+  EXPECT_FALSE(carried);
+}
+
 TEST(PerceptionGravity, ABentTreadIsOutvotedByThePlanesThatAgree) {
   // A camera at -2.4 deg (level, 0.9 m high) in front of a flight: two treads
   // of the same size, one of them tilted 3.3 deg as a whole (all of it in a

@@ -1146,3 +1146,36 @@ TEST(Tracker, ACameraRockingAlongTheStairIsNotCarriedAStepAFrame) {
   EXPECT_EQ(a.matched, a.real_steps) << tracker.model().status;
   EXPECT_EQ(a.false_steps, 0) << tracker.model().status;
 }
+
+// A robot's body rocks back as it tips over a nosing while the constant-velocity prior carries it
+// on. The registration then lies 13 cm behind the prior, beyond the prior's reach, and is not
+// merged; placed by the prior instead, the next frame started 21 cm ahead of the camera, nearer the
+// next step's alias, and registered a whole step up (a false step). Placed on the registration, the
+// next frame starts where the camera is.
+TEST(Tracker, ARegistrationBeyondThePriorsReachPlacesTheCameraForTheNextFrame) {
+  const StairGeometry stair = make_stair(12, 0.17, 0.28, 1.5);
+  ObservationMaker maker(stair, 3);
+  Tracker tracker;
+  std::vector<CameraState> cams = walk(stair, true, 0.5, 10.0);
+  const size_t k = 30;
+  ASSERT_GT(stair.nosing_x(0), cams[k - 1].position_m.x() - 3.0);
+  ASSERT_LT(cams[k + 1].position_m.x(), stair.nosing_x(6));
+  // 13 cm back at frame k, 18 cm back from k + 1 on (the robot climbs on from there).
+  for (size_t j = k; j < cams.size(); ++j) cams[j].position_m.x() -= j == k ? 0.13 : 0.18;
+  for (size_t j = 0; j < cams.size(); ++j) {
+    const StairModel& m = tracker.update(maker.make(cams[j], static_cast<int64_t>(j) * 100000));
+    if (j == k) {
+      ASSERT_NE(m.status.find("registration rejected"), std::string::npos) << m.status;
+      EXPECT_TRUE(m.camera_valid) << m.status;
+      EXPECT_NEAR(camera_past_first_nosing_m(m), cams[k].position_m.x() - stair.nosing_x(0), 0.03) << m.status;
+      EXPECT_GE(m.camera_position_uncertainty_m, 0.12) << m.status;
+    }
+    if (j == k + 1) {
+      EXPECT_EQ(m.status, "ok");
+      EXPECT_NEAR(camera_past_first_nosing_m(m), cams[k + 1].position_m.x() - stair.nosing_x(0), 0.03) << m.status;
+    }
+  }
+  const Accuracy a = score(tracker.model(), stair);
+  EXPECT_EQ(a.matched, a.real_steps) << tracker.model().status;
+  EXPECT_EQ(a.false_steps, 0) << tracker.model().status;
+}
