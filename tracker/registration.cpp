@@ -21,7 +21,9 @@ struct Profile {
   std::vector<double> riser_x, riser_z_lo, riser_z_hi;
   int end_wall = -1;  // the riser face that is the model's end wall (end_wall.hpp), if any
   double top_seen_x = 0.0;  // how far along x the top level was seen (its nosing, or its tread's far edge)
+  double tread_m = 0.0;     // the typical tread
   std::vector<double> tread_z, tread_x_lo, tread_x_hi;
+  std::vector<double> tread_seen_x;  // how far along x each level was seen (the floor: all of it)
   std::vector<Eigen::Vector2d> nosing_xz;
 };
 
@@ -34,7 +36,9 @@ Profile profile(const StairMap& map, const StairPriorConfig& c) {
   p.tread_z.push_back(floor_z);
   p.tread_x_lo.push_back(-std::numeric_limits<double>::infinity());
   p.tread_x_hi.push_back(map.steps.front().x());
+  p.tread_seen_x.push_back(map.steps.front().x());
   const double tread = typical_tread_m(map, c);
+  p.tread_m = tread;
   for (size_t i = 0; i < map.steps.size(); ++i) {
     const MapStep& s = map.steps[i];
     p.riser_x.push_back(s.x());
@@ -44,6 +48,7 @@ Profile profile(const StairMap& map, const StairPriorConfig& c) {
     p.tread_x_lo.push_back(s.x());
     p.tread_x_hi.push_back(i + 1 < map.steps.size() ? map.steps[i + 1].x()
                                                     : std::max(s.tread_far_x_m, s.x() + tread));
+    p.tread_seen_x.push_back(std::max(s.x(), s.tread_far_x_m));
     p.nosing_xz.emplace_back(s.x(), s.z());
   }
   p.top_seen_x = std::max(map.steps.back().x(), map.steps.back().tread_far_x_m);
@@ -65,12 +70,21 @@ double outside(double v, double lo, double hi) { return std::max({0.0, lo - v, v
 struct Extent {
   double x_lo, x_hi, z_lo, z_hi;
   double next_riser_x, next_riser_z;  // a riser point beyond and above both stands on the top level
+  // Boxes in the x-z profile where a level runs unseen for more than a tread before the model's next
+  // riser (a landing between two flights seen only at its ends): a riser point in one stands on that
+  // level, a step the model does not have yet.
+  std::vector<Eigen::Vector4d> unseen;  // x_lo, x_hi, z_lo, z_hi
   Extent(const Profile& p, double margin)
       : x_lo(p.riser_x.front() - margin), x_hi(p.tread_x_hi.back() + margin), z_lo(p.tread_z.front() - margin),
         z_hi(p.tread_z.back() + margin),
         next_riser_x(p.end_wall >= 0 ? std::numeric_limits<double>::infinity()
                                      : std::max(p.nosing_xz.back().x() + margin, p.top_seen_x - margin)),
-        next_riser_z(p.tread_z.back() - margin) {}
+        next_riser_z(p.tread_z.back() - margin) {
+    for (size_t k = 1; k + 1 < p.tread_z.size() && k < p.riser_x.size(); ++k)
+      if (p.riser_x[k] - p.tread_seen_x[k] > p.tread_m)
+        unseen.emplace_back(p.tread_seen_x[k] + margin, p.riser_x[k] - margin, p.tread_z[k] - margin,
+                            p.tread_z[k + 1] + margin);
+  }
   // A plane point: below the top and before the far end, and not before and below the first step.
   bool holds_plane_point(const Eigen::Vector3d& q) const {
     return q.x() <= x_hi && q.z() <= z_hi && (q.x() >= x_lo || q.z() >= z_lo);
@@ -79,7 +93,12 @@ struct Extent {
   // step's riser, which the model does not have yet (the top tread is taken to run a tread on, and
   // the next riser stands just there, its foot within the model's extent). Where the top level ends
   // at an end wall, the model knows what stands on it.
-  bool next_riser(const Eigen::Vector3d& q) const { return q.x() > next_riser_x && q.z() > next_riser_z; }
+  bool next_riser(const Eigen::Vector3d& q) const {
+    if (q.x() > next_riser_x && q.z() > next_riser_z) return true;
+    for (const Eigen::Vector4d& b : unseen)
+      if (q.x() > b[0] && q.x() < b[1] && q.z() > b[2] && q.z() < b[3]) return true;
+    return false;
+  }
   bool holds_nosing(const Eigen::Vector3d& q) const {
     return q.x() >= x_lo && q.x() <= x_hi && q.z() >= z_lo && q.z() <= z_hi;
   }

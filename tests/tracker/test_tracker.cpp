@@ -238,6 +238,41 @@ TEST(TrackerRegistration, TheNextStepsRiserIsNoDisagreement) {
   EXPECT_LT(register_to_map(in, map, pose, c.registration, c.stair).inlier_ratio, c.motion.min_inlier_ratio);
 }
 
+// A landing between two flights seen only at its ends (a robot looking up from the first flight sees
+// the second one beyond the landing's grazing top): a riser standing on it more than a tread short of
+// the model's next one is a step the model does not have yet, and agrees and disagrees with nothing.
+// The second flight's first riser, not yet in the model, had every registration of a D435 robot
+// rejected, and a whole-step search then fitted the observation a step up (2 false model steps).
+TEST(TrackerRegistration, ARiserOnAnUnseenPartOfALandingIsNoDisagreement) {
+  StairMap map;
+  const Pose4 pose;
+  const TrackerConfig c;
+  std::vector<ObservedStep> steps;
+  // Three steps, the third a landing seen 30 cm deep, then three more 1.2 m on.
+  const double xs[] = {0.0, 0.28, 0.56, 1.76, 2.04, 2.32};
+  for (int k = 0; k < 6; ++k) {
+    ObservedStep o;
+    o.nosing_m = {xs[k], 0.0, 0.17 * (k + 1)};
+    o.riser_x_m = xs[k];
+    o.tread_z_m = 0.17 * (k + 1);
+    o.tread_far_x_m = k == 2 ? xs[k] + 0.3 : xs[k] + 0.28;
+    steps.push_back(o);
+  }
+  for (int n = 0; n < 3; ++n) merge(map, steps, pose, c.merge, c.stair, c.registration.icp_min_distance_m);
+  ASSERT_EQ(map.steps.size(), 6u);
+  RegistrationInput in;
+  for (int k = 3; k < 6; ++k) in.nosings.push_back(steps[k].nosing_m);
+  // The second flight's first riser, a tread before the model's: on the landing's unseen part.
+  for (double y = -0.3; y <= 0.3; y += 0.05)
+    for (double z = 0.52; z < 0.67; z += 0.01) in.riser_points.emplace_back(1.48, y, z);
+  const Registration reg = register_to_map(in, map, pose, c.registration, c.stair);
+  EXPECT_GE(reg.inlier_ratio, c.motion.min_inlier_ratio);
+  EXPECT_NEAR(reg.pose.t_m.x(), 0.0, 0.01);
+  // The same riser on the part of the landing the model saw disagrees.
+  for (auto& q : in.riser_points) q.x() = 0.56 + 0.2;
+  EXPECT_LT(register_to_map(in, map, pose, c.registration, c.stair).inlier_ratio, c.motion.min_inlier_ratio);
+}
+
 TEST(Tracker, StepsCountConfirmations) {
   const Walk r = walk_stair(kStair, true, 0.6);
   for (const auto& f : r.model.flights)
