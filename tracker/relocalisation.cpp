@@ -2,11 +2,13 @@
 
 #include "tracker/config.hpp"
 
+#include <vector>
+
 namespace stairs {
 
 Registration relocalise(const RegistrationInput& in, const StairMap& map, const Pose4& prior,
                         const RelocalisationConfig& c, const RegistrationConfig& registration,
-                        const StairPriorConfig& stair, double max_shift_m) {
+                        const StairPriorConfig& stair, double max_shift_m, bool* ambiguous) {
   // Starts half a step apart: ICP reaches icp_max_tread_fraction (0.4) of a
   // tread from its start, so whole-step starts leave offsets near half a step
   // (a robot tipping over a nosing jumps that far in one frame) out of reach.
@@ -20,6 +22,7 @@ Registration relocalise(const RegistrationInput& in, const StairMap& map, const 
   };
   auto off_prior_m = [&](const Registration& g) { return (g.pose.t_m - prior.t_m).norm(); };
   Registration best = register_to_map(in, map, prior, registration, stair);
+  std::vector<Registration> tried{best};
   for (int k = 1; k <= 2 * c.step_range; ++k) {
     // Half a step either way is always tried (a robot tipping over a nosing jumps that far in a
     // frame); a start farther off than the prior may be is no hypothesis: a walker's first frame
@@ -32,6 +35,7 @@ Registration relocalise(const RegistrationInput& in, const StairMap& map, const 
       Pose4 start = prior;
       start.t_m += (side == 0 ? k : -k) * half_step;
       pair[side] = register_to_map(in, map, start, registration, stair);
+      tried.push_back(pair[side]);
     }
     // The same shift back and forth, neither clearly better: the one that ends nearer the prior (a
     // robot's camera on a 1.1 m mast, rocking 10 cm a frame over the nosings, was put a step back
@@ -41,6 +45,13 @@ Registration relocalise(const RegistrationInput& in, const StairMap& map, const 
     const Registration& r = pair[second ? 1 : 0];
     // A shift must beat the prior (and the smaller shifts) clearly.
     if (clearly_better(r, best)) best = r;
+  }
+  // Another whole-step shift (more than half a step from the winner) that the winner does not beat
+  // clearly: the observation fits either, and the winner is the tie-break's.
+  if (ambiguous) {
+    *ambiguous = false;
+    for (const Registration& r : tried)
+      if ((r.pose.t_m - best.pose.t_m).norm() > half_step.norm() && !clearly_better(best, r)) *ambiguous = true;
   }
   return best;
 }

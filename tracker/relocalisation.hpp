@@ -13,8 +13,9 @@ namespace stairs {
 
 struct RelocalisationConfig;
 
+// `ambiguous` (when given): another whole-step shift fits about as well as the one returned.
 Registration relocalise(const RegistrationInput& in, const StairMap& map, const Pose4& prior,
                         const RelocalisationConfig& c, const RegistrationConfig& registration,
-                        const StairPriorConfig& stair, double max_shift_m);
+                        const StairPriorConfig& stair, double max_shift_m, bool* ambiguous = nullptr);
 
 }  // namespace stairs

@@ -369,6 +369,21 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   if (!relocalising && !with_odometry && reg.x_within > 0 && reg.x_inliers == 0) {
     relocalising = true;
     reg = relocalise(input, map_, start_pose, config_.relocalisation, config_.registration, config_.stair, max_shift_m);
+  } else if (!relocalising && !with_odometry && reg.x_within > 0 && reg.inlier_ratio < config_.motion.min_inlier_ratio) {
+    // Fewer points agree than a registration needs: the prior may be off by more than ICP reaches but
+    // less than half a step (a robot's body pitching up at a flight's foot swung its camera 14 cm
+    // back; the registration stopped 4 cm short with a sixth of its points agreeing, and every later
+    // one was turned down until the model was lost). The search's result is taken only where it is
+    // that: within half a step of the prior (a hand-held descent's third frame was put a whole step
+    // off and the model lost its top step), and no other whole-step shift fits about as well (a tie
+    // between two shifts is a guess: a robot on a mid landing took 2 false steps from such guesses).
+    bool ambiguous = true;
+    const Registration found = relocalise(input, map_, start_pose, config_.relocalisation, config_.registration,
+                                          config_.stair, max_shift_m, &ambiguous);
+    if (!ambiguous && nearest_whole_step_shift(found.pose, start_pose)) {
+      relocalising = true;
+      reg = found;
+    }
   }
   if (const auto anchored = on_first_step(obs, input, reg)) {
     reg = *anchored;
