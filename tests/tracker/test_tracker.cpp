@@ -80,6 +80,18 @@ void shift(Observation& obs, const Eigen::Vector3f& off) {
   }
 }
 
+// Every frame of a 10 Hz walk, in order.
+void feed_at_10hz(Tracker& tracker, ObservationMaker& maker, const std::vector<CameraState>& cams) {
+  for (size_t k = 0; k < cams.size(); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 100000));
+}
+
+// The final model holds every real step and no false one.
+void expect_every_real_step(const StairModel& m, const StairGeometry& g) {
+  const Accuracy a = score(m, g);
+  EXPECT_EQ(a.matched, a.real_steps) << m.status;
+  EXPECT_EQ(a.false_steps, 0) << m.status;
+}
+
 const StairGeometry kStair = make_stair(9, 0.17, 0.28, 1.5);
 const StairGeometry kTwoFlights = make_stair(12, 0.17, 0.28, 1.5, 5, 1.2);
 
@@ -1159,10 +1171,8 @@ TEST(Tracker, AFlightHasOneFirstStepWhereTheFloorIsSeenBeforeIt) {
   std::vector<CameraState> cams = walk(stair, false, 0.3, 10.0);
   for (size_t k = 0; k < cams.size(); ++k)
     if (k % 4 == 3 && cams[k].position_m.x() < 1.6) cams[k].position_m += Eigen::Vector3d(0.2, 0.0, 0.12);
-  for (size_t k = 0; k < cams.size(); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 100000));
-  const Accuracy a = score(tracker.model(), stair);
-  EXPECT_EQ(a.matched, a.real_steps) << tracker.model().status;
-  EXPECT_EQ(a.false_steps, 0) << tracker.model().status;
+  feed_at_10hz(tracker, maker, cams);
+  expect_every_real_step(tracker.model(), stair);
 }
 
 // A robot's camera on a tall mast, its body rocking over the nosings: the camera swings 10 cm
@@ -1177,10 +1187,8 @@ TEST(Tracker, ACameraRockingAlongTheStairIsNotCarriedAStepAFrame) {
   Tracker tracker;
   std::vector<CameraState> cams = walk(stair, false, 0.3, 10.0);
   for (size_t k = 0; k < cams.size(); ++k) cams[k].position_m.x() += (k % 2 ? 0.12 : -0.12) * (k > 10);
-  for (size_t k = 0; k < cams.size(); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 100000));
-  const Accuracy a = score(tracker.model(), stair);
-  EXPECT_EQ(a.matched, a.real_steps) << tracker.model().status;
-  EXPECT_EQ(a.false_steps, 0) << tracker.model().status;
+  feed_at_10hz(tracker, maker, cams);
+  expect_every_real_step(tracker.model(), stair);
 }
 
 // A robot's body rocks back as it tips over a nosing while the constant-velocity prior carries it
@@ -1194,7 +1202,8 @@ TEST(Tracker, ARegistrationBeyondThePriorsReachPlacesTheCameraForTheNextFrame) {
   Tracker tracker;
   std::vector<CameraState> cams = walk(stair, true, 0.5, 10.0);
   const size_t k = 30;
-  ASSERT_GT(stair.nosing_x(0), cams[k - 1].position_m.x() - 3.0);
+  // On the flight's lower half, its steps ahead in view.
+  ASSERT_GT(cams[k].position_m.x(), stair.nosing_x(0) - 1.0);
   ASSERT_LT(cams[k + 1].position_m.x(), stair.nosing_x(6));
   // 13 cm back at frame k, 18 cm back from k + 1 on (the robot climbs on from there).
   for (size_t j = k; j < cams.size(); ++j) cams[j].position_m.x() -= j == k ? 0.13 : 0.18;
@@ -1211,9 +1220,7 @@ TEST(Tracker, ARegistrationBeyondThePriorsReachPlacesTheCameraForTheNextFrame) {
       EXPECT_NEAR(camera_past_first_nosing_m(m), cams[k + 1].position_m.x() - stair.nosing_x(0), 0.03) << m.status;
     }
   }
-  const Accuracy a = score(tracker.model(), stair);
-  EXPECT_EQ(a.matched, a.real_steps) << tracker.model().status;
-  EXPECT_EQ(a.false_steps, 0) << tracker.model().status;
+  expect_every_real_step(tracker.model(), stair);
 }
 
 // A robot's body pitching up at a flight's foot swings its camera back by more than ICP reaches from
@@ -1237,9 +1244,7 @@ TEST(Tracker, ACameraSwungBackBeyondICPsReachIsFoundByTheSearch) {
       EXPECT_NEAR(camera_past_first_nosing_m(m), cams[k].position_m.x() - stair.nosing_x(0), 0.03) << m.status;
     }
   }
-  const Accuracy a = score(tracker.model(), stair);
-  EXPECT_EQ(a.matched, a.real_steps) << tracker.model().status;
-  EXPECT_EQ(a.false_steps, 0) << tracker.model().status;
+  expect_every_real_step(tracker.model(), stair);
 }
 
 // The whole-step search says when another shift fits about as well as the one it returns: on a
