@@ -12,7 +12,7 @@ Registration relocalise(const RegistrationInput& in, const StairMap& map, const 
   // Starts half a step apart: ICP reaches icp_max_tread_fraction (0.4) of a
   // tread from its start, so whole-step starts leave offsets near half a step
   // (a robot tipping over a nosing jumps that far in one frame) out of reach.
-  const Eigen::Vector3d half_step = 0.5 * Eigen::Vector3d(typical_tread_m(map, stair), 0.0, typical_riser_m(map, stair));
+  const Eigen::Vector3d half_step = 0.5 * typical_step_m(map, stair);
   // A nosing counts as many points as in the ICP: going down, the nosings are all that fixes x
   // (treads agree wherever along them the camera is).
   auto agreeing = [&](const Registration& g) { return agreeing_points(g, registration); };

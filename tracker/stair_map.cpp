@@ -29,6 +29,10 @@ double typical_tread_m(const StairMap& map, const StairPriorConfig& c) {
   return t.empty() ? c.default_tread_m : median(t);
 }
 
+Eigen::Vector3d typical_step_m(const StairMap& map, const StairPriorConfig& c) {
+  return Eigen::Vector3d(typical_tread_m(map, c), 0.0, typical_riser_m(map, c));
+}
+
 double floor_z_m(const StairMap& map, const StairPriorConfig& c) {
   const MapStep& first = map.steps.front();
   const double riser = first.riser_height_m.known() ? first.riser_height_m.value : typical_riser_m(map, c);

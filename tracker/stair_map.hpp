@@ -68,6 +68,8 @@ struct StairMap {
 // steps), or the configured defaults while the model is too small.
 double typical_riser_m(const StairMap& map, const StairPriorConfig& c);
 double typical_tread_m(const StairMap& map, const StairPriorConfig& c);
+// One typical step along the flight (x: tread, z: rise): a periodic flight repeats itself by it.
+Eigen::Vector3d typical_step_m(const StairMap& map, const StairPriorConfig& c);
 // Height of the level at x (W): the tread of the last step whose edge is at or
 // behind x, the floor before the first.
 double surface_z_m(const StairMap& map, double x_m, const StairPriorConfig& c);

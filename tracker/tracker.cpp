@@ -330,7 +330,7 @@ void Tracker::note_end_wall(const Observation& obs, const Pose4& pose, double pr
 // Whether `pose` is, of the poses a whole number of steps apart along the stair (which a periodic
 // flight cannot tell apart), the one nearest `prior`: less than half a step from it along the flight.
 bool Tracker::nearest_whole_step_shift(const Pose4& pose, const Pose4& prior) const {
-  const Eigen::Vector3d step(typical_tread_m(map_, config_.stair), 0.0, typical_riser_m(map_, config_.stair));
+  const Eigen::Vector3d step = typical_step_m(map_, config_.stair);
   return std::abs((pose.t_m - prior.t_m).dot(step.normalized())) < 0.5 * step.norm();
 }
 
@@ -532,17 +532,17 @@ std::optional<Registration> Tracker::on_first_step(const Observation& obs, const
   if (!first.on_seen_floor || first.confirmations < config_.confirmation.min_confirmations ||
       !floor_before_lowest_step(obs))
     return std::nullopt;
-  const double tread = typical_tread_m(map_, config_.stair), rise = typical_riser_m(map_, config_.stair);
+  const Eigen::Vector3d step = typical_step_m(map_, config_.stair);
   auto steps_off = [&](const Pose4& pose) {
     const std::vector<ObservedStep> observed = observed_steps(obs, pose);
     const ObservedStep& lowest = lowest_step(observed);
-    const long along = std::lround((lowest.x() - first.x()) / tread), up = std::lround((lowest.z() - first.z()) / rise);
+    const long along = std::lround((lowest.x() - first.x()) / step.x()), up = std::lround((lowest.z() - first.z()) / step.z());
     return along == up ? along : 0L;  // whole steps along the flight (else a level, not a step, apart)
   };
   const long k = steps_off(reg.pose);
   if (k == 0 || std::abs(k) > config_.relocalisation.step_range) return std::nullopt;
   Pose4 start = reg.pose;
-  start.t_m -= static_cast<double>(k) * Eigen::Vector3d(tread, 0.0, rise);
+  start.t_m -= static_cast<double>(k) * step;
   const Registration shifted = register_to_map(input, map_, start, config_.registration, config_.stair);
   if (steps_off(shifted.pose) != 0 || shifted.inlier_ratio < config_.motion.min_inlier_ratio ||
       agreeing_points(shifted, config_.registration) < agreeing_points(reg, config_.registration))

@@ -682,9 +682,10 @@ TEST(Tracker, WhereThePriorMayBeOffByANosingTheStepBeneathIsUnknown) {
       // The bound is published (camera_position_uncertainty_m): at least the registration's, growing
       // while the prior alone places it, and where it allows for the deceleration the camera is within it.
       EXPECT_GE(m.camera_position_uncertainty_m, c.registration.position_uncertainty_m + 0.5 * max_accel_mps2 * t * t - 1e-9);
-      if (max_accel_mps2 >= decel_mps2)
+      if (max_accel_mps2 >= decel_mps2) {
         EXPECT_LE(std::abs(camera_past_first_nosing_m(m) - (cam.position_m.x() - kStair.nosing_x(0))),
                   m.camera_position_uncertainty_m) << n;
+      }
       if (!m.camera_beneath_known) continue;
       int real = -1;
       while (real + 1 < static_cast<int>(kStair.riser_m.size()) && kStair.nosing_x(real + 1) <= cam.position_m.x()) ++real;
