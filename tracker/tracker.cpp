@@ -54,6 +54,7 @@ void Tracker::reset() {
   direction_.reset();
   accepted_.clear();  // odometry is kept: it is no state of the model
   placed_.reset();
+  prior_refuted_ = false;
   have_utime_ = false;
   const StairModel fresh;
   model_ = fresh;
@@ -270,10 +271,21 @@ std::optional<Registration> Tracker::on_planes_in_view(const Observation& obs, c
   if (in.riser_points.empty() && in.nosings.empty()) return std::nullopt;
   Pose4 start = prior;
   start.yaw_rad = yaw_of_risers_in_view(obs, prior.yaw_rad);
-  const Registration reg = register_to_map(in, map_, start, config_.registration, config_.stair);
+  Registration reg = register_to_map(in, map_, start, config_.registration, config_.stair);
   if (reg.x_inliers == 0 || reg.inlier_ratio < config_.motion.min_inlier_ratio ||
       (reg.pose.t_m - prior.t_m).norm() > config_.motion.max_translation_jump_m)
     return std::nullopt;
+  // Agreeing treads and nosings fix the height; faces alone (risers, the end wall) fix only the
+  // position along the stair, and the carrier's base then rises by the stair's mean slope over the
+  // way they moved it, as predict() carries it. Kept at the prior's height instead, a robot climbing
+  // a steep flight slower than its prior, looking up at the top landing's end wall, rose 20 cm
+  // above its camera's true height in 2 s.
+  const int tread_inliers = reg.inliers - (reg.x_inliers - reg.nosing_inliers);
+  if (tread_inliers == 0 && reg.nosing_inliers == 0) {
+    const Eigen::Vector3d to_base = to_base_m(obs);
+    const double from_x = (start.t_m + start.rotation() * to_base).x(), to_x = (reg.pose.t_m + reg.pose.rotation() * to_base).x();
+    reg.pose.t_m.z() = start.t_m.z() + mean_surface_z_m(map_, to_x, config_.stair) - mean_surface_z_m(map_, from_x, config_.stair);
+  }
   return reg;
 }
 
@@ -286,6 +298,7 @@ void Tracker::place(const Observation& obs, const Registration& placed, const st
   model_.status = why + (wall_only ? "; camera placed on the model's end wall in view"
                                    : "; camera placed on the model's risers or nosings in view");
   placed_ = Accepted{obs.source_utime, placed.pose, to_base_m(obs)};
+  prior_refuted_ = false;
   x_measured_utime_ = obs.source_utime;
   x_measured_uncertainty_m_ = uncertainty_m + (wall_only ? map_.end_wall_uncertainty_m.value : 0.0);
   if (!wall_only) note_end_wall(obs, placed.pose, x_measured_uncertainty_m_);
@@ -311,7 +324,11 @@ void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool wi
                   : with_odometry ? why + "; camera from odometry"
                                   : why + "; camera from the motion prior";
   const Pose4 pose = with_observed_height(obs, prior);
-  const double uncertainty_m = prior_x_uncertainty_m(obs.source_utime, with_odometry);
+  // A refuted prior (a registration from it that its points disagreed with) is off by more than ICP
+  // reaches, by how much unknown: published a step uncertain (a robot's body rocking 20 cm back was
+  // published 2-3 cm uncertain from a prior 20-26 cm off).
+  const double carried_m = prior_x_uncertainty_m(obs.source_utime, with_odometry);
+  const double uncertainty_m = prior_refuted_ ? std::max(carried_m, typical_tread_m(map_, config_.stair)) : carried_m;
   // A wall first seen from a pose the prior placed (the last riser out of view before the wall came
   // into it) is as good as that pose, and no better: taken while that is within how far a
   // registration may correct the prior (a wall further off could not place the camera anyway).
@@ -359,16 +376,23 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
                                  ? std::numeric_limits<double>::infinity()
                                  : prior_x_uncertainty_m(obs.source_utime, with_odometry) +
                                        config_.registration.icp_max_tread_fraction * typical_tread_m(map_, config_.stair);
+  bool ambiguous = false;
   Registration reg = relocalising ? relocalise(input, map_, start_pose, config_.relocalisation, config_.registration,
-                                               config_.stair, max_shift_m)
+                                               config_.stair, max_shift_m, &ambiguous)
                                   : register_to_map(input, map_, start_pose, config_.registration, config_.stair);
+  // A registration from the prior that its points disagree with shows the prior off by more than ICP
+  // reaches (place_by_prior publishes it so).
+  if (!relocalising && !with_odometry && reg.x_within > 0 &&
+      (reg.x_inliers == 0 || reg.inlier_ratio < config_.motion.min_inlier_ratio))
+    prior_refuted_ = true;
   // Risers and nosings on the model, none of which agrees: x is the prior's
   // alone, and the prior is off by more than ICP reaches (a robot tipping over
   // a nosing jumps half a step in a frame; the treads then pulled z onto the
   // wrong level for 19 frames). Search as after a gap.
   if (!relocalising && !with_odometry && reg.x_within > 0 && reg.x_inliers == 0) {
     relocalising = true;
-    reg = relocalise(input, map_, start_pose, config_.relocalisation, config_.registration, config_.stair, max_shift_m);
+    reg = relocalise(input, map_, start_pose, config_.relocalisation, config_.registration, config_.stair, max_shift_m,
+                     &ambiguous);
   } else if (!relocalising && !with_odometry && reg.x_within > 0 && reg.inlier_ratio < config_.motion.min_inlier_ratio) {
     // Fewer points agree than a registration needs: the prior may be off by more than ICP reaches but
     // less than half a step (a robot's body pitching up at a flight's foot swung its camera 14 cm
@@ -377,10 +401,10 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
     // that: within half a step of the prior (a hand-held descent's third frame was put a whole step
     // off and the model lost its top step), and no other whole-step shift fits about as well (a tie
     // between two shifts is a guess: a robot on a mid landing took 2 false steps from such guesses).
-    bool ambiguous = true;
+    bool tied = true;
     const Registration found = relocalise(input, map_, start_pose, config_.relocalisation, config_.registration,
-                                          config_.stair, max_shift_m, &ambiguous);
-    if (!ambiguous && nearest_whole_step_shift(found.pose, start_pose)) {
+                                          config_.stair, max_shift_m, &tied);
+    if (!tied && nearest_whole_step_shift(found.pose, start_pose)) {
       relocalising = true;
       reg = found;
     }
@@ -388,7 +412,19 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   if (const auto anchored = on_first_step(obs, input, reg)) {
     reg = *anchored;
     relocalising = true;
+    ambiguous = false;  // the flight's first step on the floor seen: no shift fits it alike
   }
+  // Whole-step shifts that fit alike (a uniform part of a flight, its ends out of view) are told apart
+  // by the prior alone: the one nearest it is taken (a walker's constant speed over a gap; a robot
+  // tipping over a nosing, its prior refuted but good to half a tread), unless the stair was lost (the
+  // prior is stale) or the prior is both refuted and uncertain by half a tread or more. A robot whose
+  // body had rocked 13 cm back while the prior carried it on, turned down for 0.5 s, was placed a
+  // whole step up by the shift nearest that prior (the model gained a step above its top).
+  const bool prior_tells_shifts =
+      model_.state != TrackingState::Lost &&
+      !(prior_refuted_ &&
+        prior_x_uncertainty_m(obs.source_utime, with_odometry) >= 0.5 * typical_tread_m(map_, config_.stair));
+  const bool guessed = ambiguous && !prior_tells_shifts;
   // Entirely beyond the model (the next flight seen from a landing): nothing
   // to register against, so the motion prior places it while it is fresh.
   // Or only the level it stands on overlaps the model (that landing, its near part seen before):
@@ -421,12 +457,14 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   // (the landing the camera stands on) agrees wherever along it the camera is:
   // a relocalisation must rest on risers or nosings (the next flight seen
   // from a mid landing was fitted 0.7 m short, onto the last one).
-  const bool x_unknown = relocalising && !dead_reckoned && reg.x_inliers == 0;
+  const bool x_unknown = relocalising && !dead_reckoned && (reg.x_inliers == 0 || guessed);
   if (x_unknown || reg.inlier_ratio < config_.motion.min_inlier_ratio ||
       jump > config_.motion.max_translation_jump_m + step_m) {
     ++rejected_registrations_;
-    const std::string why = x_unknown ? std::string("relocalisation rejected: no riser or nosing agrees, position "
-                                                    "along the stair unknown")
+    const std::string why = guessed     ? std::string("relocalisation rejected: whole-step shifts fit alike and the "
+                                                      "prior cannot tell them apart, position along the stair unknown")
+                            : x_unknown ? std::string("relocalisation rejected: no riser or nosing agrees, position "
+                                                      "along the stair unknown")
                                       : "registration rejected (inliers " + std::to_string(reg.inlier_ratio) +
                                             ", jump " + std::to_string(jump) + " m)";
     if (reseed(obs, why)) return;
@@ -478,6 +516,7 @@ void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured)
   if (x_measured) {
     x_measured_utime_ = obs.source_utime;
     x_measured_uncertainty_m_ = 0.0;
+    prior_refuted_ = false;
     note_speed_change();
   }
   ++model_.observations_fused;

@@ -102,6 +102,9 @@ class Tracker {
   int64_t x_measured_utime_ = 0;
   double x_measured_uncertainty_m_ = 0.0;
   double speed_change_mps_ = 0.0;
+  // A registration from the prior turned down since then for points that disagree with it: the prior
+  // is off by more than ICP reaches, by how much unknown.
+  bool prior_refuted_ = false;
   int64_t last_utime_ = 0;
   bool have_utime_ = false;
   int64_t dropped_out_of_order_ = 0, rejected_registrations_ = 0, resets_ = 0, time_jumps_ = 0;

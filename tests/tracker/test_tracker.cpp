@@ -80,6 +80,20 @@ void shift(Observation& obs, const Eigen::Vector3f& off) {
   }
 }
 
+// Keeps an observation's `n` nearest steps and their planes (a camera looking at a few steps only).
+void keep_nearest_steps(Observation& obs, size_t n) {
+  if (obs.steps.size() <= n) return;
+  obs.steps.resize(n);
+  std::vector<Plane> planes;
+  for (Step& s : obs.steps)
+    for (int* p : {&s.riser_plane, &s.tread_plane})
+      if (*p >= 0) {
+        planes.push_back(obs.planes[static_cast<size_t>(*p)]);
+        *p = static_cast<int>(planes.size()) - 1;
+      }
+  obs.planes = planes;
+}
+
 // Every frame of a 10 Hz walk, in order.
 void feed_at_10hz(Tracker& tracker, ObservationMaker& maker, const std::vector<CameraState>& cams) {
   for (size_t k = 0; k < cams.size(); ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 100000));
@@ -758,6 +772,47 @@ TEST(Tracker, OnATopLandingItsEndWallPlacesTheCamera) {
   EXPECT_LT(placed, frames / 2) << "without the wall, nothing places the camera on the landing for long";
 }
 
+// Near a flight's top a climber sees no step ahead, only the wall where the top landing ends: it
+// fixes the camera's position along the stair and not its height. A robot slowing there to a fifth
+// while the prior carries it on at its climbing speed is put back along the stair by the wall; its
+// height comes back with it, along the stair's slope. Kept at the prior's, it rose 4 cm a frame
+// above the camera (20 cm in 2 s on a steep flight).
+TEST(Tracker, AnEndWallAloneMovesTheCameraAlongTheStairsSlope) {
+  StairGeometry g = make_stair(9, 0.2, 0.24, 1.8);
+  g.end_wall = true;
+  Tracker tracker;
+  ObservationMaker maker(g, 23);
+  const std::vector<CameraState> path = walk(g, true, 0.5, 10.0);
+  // Up to where no step is in view any more.
+  size_t k_wall = 0;
+  for (ObservationMaker probe(g, 1); k_wall < path.size() && !probe.make(path[k_wall], 0).steps.empty();) ++k_wall;
+  ASSERT_LT(k_wall, path.size());
+  std::vector<CameraState> cams(path.begin(), path.begin() + static_cast<long>(k_wall));
+  const CameraState last = cams.back();
+  for (int k = 1; k <= 20; ++k) {  // 2 s at 0.1 m/s, on up the flight
+    CameraState c = last;
+    c.position_m.x() += 0.01 * k;
+    double z = 0;
+    for (int j = -4; j <= 4; ++j) z += g.surface_z(c.position_m.x() + 0.1 * j) / 9.0;
+    c.position_m.z() = z + 1.45;
+    cams.push_back(c);
+  }
+  int on_wall = 0, off = 0;
+  for (size_t k = 0; k < cams.size(); ++k) {
+    const StairModel& m = tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 100000));
+    if (m.status.find("end wall in view") == std::string::npos || !m.camera_valid) continue;
+    ++on_wall;
+    const double dz = m.camera_position_m.z() - m.flights[0].steps[0].nosing_m.z() -
+                      (cams[k].position_m.z() - g.nosing_z(0));
+    // The walk's eye follows the surface smoothed over 0.8 m, the tracker's the mean over a tread:
+    // up to 4 cm apart on these 20 cm rises. Kept at the prior's height: 3 cm more each frame.
+    if (std::abs(dz) > 0.05) ADD_FAILURE() << "frame " << k << ": height " << dz << " m off, " << m.status;
+    off += std::abs(dz) > 0.05;
+  }
+  EXPECT_GE(on_wall, 10);
+  EXPECT_EQ(off, 0);
+}
+
 // Moves everything an observation saw `dx_m` along the camera's forward axis (gravity frame).
 void shift(Observation& obs, double dx_m) {
   const Eigen::Vector3f d(static_cast<float>(dx_m), 0.0f, 0.0f);
@@ -1245,6 +1300,49 @@ TEST(Tracker, ACameraSwungBackBeyondICPsReachIsFoundByTheSearch) {
       EXPECT_NEAR(camera_past_first_nosing_m(m), cams[k].position_m.x() - stair.nosing_x(0), 0.03) << m.status;
     }
   }
+  expect_every_real_step(tracker.model(), stair);
+}
+
+// A robot's body rocks 15 cm back over a nosing and the robot then stands for a second while the
+// constant-velocity prior carries it on. Turned down frame after frame, the prior ends more than half
+// a tread off, and the whole-step search then finds shifts a step apart that fit alike (a uniform
+// part of the flight, its ends out of view): the one nearest that prior is a guess (a step up; the
+// model gained a step above its top). The camera's position is unknown until a frame tells the
+// shifts apart; a camera published as known to within half a tread is never a step off.
+TEST(Tracker, AWholeStepShiftARefutedPriorCannotTellApartLeavesThePositionUnknown) {
+  StairGeometry stair = make_stair(14, 0.17, 0.28, 1.5);
+  stair.floor_depth_m = 2.0;
+  ObservationMaker maker(stair, 6);
+  Tracker tracker;
+  const std::vector<CameraState> path = walk(stair, true, 0.5, 10.0);
+  size_t k = 0;
+  while (k < path.size() && path[k].position_m.x() < -0.9) ++k;
+  ASSERT_LT(k, path.size());
+  std::vector<CameraState> cams(path.begin(), path.begin() + static_cast<long>(k));
+  for (int j = 0; j < 10; ++j) cams.push_back(path[k]);  // a second standing
+  cams.insert(cams.end(), path.begin() + static_cast<long>(k), path.end());
+  for (size_t j = k; j < cams.size(); ++j) cams[j].position_m.x() -= 0.2;
+  int known = 0, off = 0, unknown = 0;
+  for (size_t j = 0; j < cams.size(); ++j) {
+    Observation obs = maker.make(cams[j], static_cast<int64_t>(j) * 100000);
+    // For 1.5 s from the lurch only the 3 nearest steps are seen (the camera pitched down at them):
+    // the model runs on beyond them either way, and shifts a step apart fit them alike. Then the
+    // floor before the first step tells them apart again.
+    if (j >= k && j < k + 15) keep_nearest_steps(obs, 3);
+    const StairModel& m = tracker.update(obs);
+    if (j < k || !m.camera_valid || m.flights.empty()) continue;
+    if (m.camera_position_uncertainty_m >= 0.14) {
+      ++unknown;
+      continue;
+    }
+    ++known;
+    const double along = camera_past_first_nosing_m(m) - (cams[j].position_m.x() - stair.nosing_x(0));
+    if (std::abs(along) > 0.05) ADD_FAILURE() << "frame " << j << ": " << along << " m off, " << m.status;
+    off += std::abs(along) > 0.05;
+  }
+  EXPECT_GT(unknown, 0) << "the prior was never uncertain: no test";
+  EXPECT_GT(known, 20);
+  EXPECT_EQ(off, 0);
   expect_every_real_step(tracker.model(), stair);
 }
 
