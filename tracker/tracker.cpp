@@ -283,8 +283,10 @@ std::optional<Registration> Tracker::on_planes_in_view(const Observation& obs, c
   const int tread_inliers = reg.inliers - (reg.x_inliers - reg.nosing_inliers);
   if (tread_inliers == 0 && reg.nosing_inliers == 0) {
     const Eigen::Vector3d to_base = to_base_m(obs);
-    const double from_x = (start.t_m + start.rotation() * to_base).x(), to_x = (reg.pose.t_m + reg.pose.rotation() * to_base).x();
-    reg.pose.t_m.z() = start.t_m.z() + mean_surface_z_m(map_, to_x, config_.stair) - mean_surface_z_m(map_, from_x, config_.stair);
+    const double from_x = (start.t_m + start.rotation() * to_base).x();
+    const double to_x = (reg.pose.t_m + reg.pose.rotation() * to_base).x();
+    reg.pose.t_m.z() =
+        start.t_m.z() + mean_surface_z_m(map_, to_x, config_.stair) - mean_surface_z_m(map_, from_x, config_.stair);
   }
   return reg;
 }
@@ -325,7 +327,7 @@ void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool wi
                                   : why + "; camera from the motion prior";
   const Pose4 pose = with_observed_height(obs, prior);
   // A refuted prior (a registration from it that its points disagreed with) is off by more than ICP
-  // reaches, by how much unknown: published a step uncertain (a robot's body rocking 20 cm back was
+  // reaches, by how much unknown: published a tread uncertain (a robot's body rocking 20 cm back was
   // published 2-3 cm uncertain from a prior 20-26 cm off).
   const double carried_m = prior_x_uncertainty_m(obs.source_utime, with_odometry);
   const double uncertainty_m = prior_refuted_ ? std::max(carried_m, typical_tread_m(map_, config_.stair)) : carried_m;
