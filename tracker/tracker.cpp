@@ -418,15 +418,14 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   }
   // Whole-step shifts that fit alike (a uniform part of a flight, its ends out of view) are told apart
   // by the prior alone: the one nearest it is taken (a walker's constant speed over a gap; a robot
-  // tipping over a nosing, its prior refuted but good to half a tread), unless the stair was lost (the
-  // prior is stale) or the prior is both refuted and uncertain by half a tread or more. A robot whose
-  // body had rocked 13 cm back while the prior carried it on, turned down for 0.5 s, was placed a
-  // whole step up by the shift nearest that prior (the model gained a step above its top).
-  const bool prior_tells_shifts =
-      model_.state != TrackingState::Lost &&
-      !(prior_refuted_ &&
-        prior_x_uncertainty_m(obs.source_utime, with_odometry) >= 0.5 * typical_tread_m(map_, config_.stair));
-  const bool guessed = ambiguous && !prior_tells_shifts;
+  // tipping over a nosing, its prior refuted but good to half a tread), unless that is a guess: the
+  // stair was lost (the prior is stale), or the prior is both refuted and uncertain by half a tread or
+  // more. A robot whose body had rocked 13 cm back while the prior carried it on, turned down for
+  // 0.5 s, was placed a whole step up by the shift nearest that prior (a step above the top landing).
+  const bool guessed =
+      ambiguous && (model_.state == TrackingState::Lost ||
+                    (prior_refuted_ && prior_x_uncertainty_m(obs.source_utime, with_odometry) >=
+                                           0.5 * typical_tread_m(map_, config_.stair)));
   // Entirely beyond the model (the next flight seen from a landing): nothing
   // to register against, so the motion prior places it while it is fresh.
   // Or only the level it stands on overlaps the model (that landing, its near part seen before):
