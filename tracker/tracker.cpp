@@ -382,16 +382,14 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   Registration reg = relocalising ? relocalise(input, map_, start_pose, config_.relocalisation, config_.registration,
                                                config_.stair, max_shift_m, &ambiguous)
                                   : register_to_map(input, map_, start_pose, config_.registration, config_.stair);
-  // A registration from the prior that its points disagree with shows the prior off by more than ICP
-  // reaches (place_by_prior publishes it so).
-  if (!relocalising && !with_odometry && reg.x_within > 0 &&
-      (reg.x_inliers == 0 || reg.inlier_ratio < config_.motion.min_inlier_ratio))
-    prior_refuted_ = true;
+  // Both searches below follow a registration from the prior that its points disagree with: the
+  // prior is refuted, off by more than ICP reaches (place_by_prior publishes it so).
   // Risers and nosings on the model, none of which agrees: x is the prior's
   // alone, and the prior is off by more than ICP reaches (a robot tipping over
   // a nosing jumps half a step in a frame; the treads then pulled z onto the
   // wrong level for 19 frames). Search as after a gap.
   if (!relocalising && !with_odometry && reg.x_within > 0 && reg.x_inliers == 0) {
+    prior_refuted_ = true;
     relocalising = true;
     reg = relocalise(input, map_, start_pose, config_.relocalisation, config_.registration, config_.stair, max_shift_m,
                      &ambiguous);
@@ -403,6 +401,7 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
     // that: within half a step of the prior (a hand-held descent's third frame was put a whole step
     // off and the model lost its top step), and no other whole-step shift fits about as well (a tie
     // between two shifts is a guess: a robot on a mid landing took 2 false steps from such guesses).
+    prior_refuted_ = true;
     bool tied = true;
     const Registration found = relocalise(input, map_, start_pose, config_.relocalisation, config_.registration,
                                           config_.stair, max_shift_m, &tied);
