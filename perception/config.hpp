@@ -162,6 +162,9 @@ struct RegionGrowingConfig {
   float max_distance_m = 0.03f;    // m; cap of that distance: a riser seen from above never joins
   float distance_floor_m = 0.004f;  // m; added to that distance: depth quantisation of near cells
   int min_plane_px_320 = 100;      // px at 320x240; smaller planes are dropped (scaled)
+  float fit_jump_ratio = 0.05f;    // fraction of depth; a cell this much nearer or farther than a neighbour
+                                   // of another segment mixes the two: left out of its segment's plane fit
+                                   // (flying pixels tilt strips between jumps; as normals.jump_ratio)
 
   template <class V>
   void visit(V& v) {
@@ -171,6 +174,7 @@ struct RegionGrowingConfig {
     v("max_distance_m", max_distance_m, 0.0f, 1.0f);
     v("distance_floor_m", distance_floor_m, 0.0f, 0.1f);
     v("min_plane_px_320", min_plane_px_320, 1, 76800);
+    v("fit_jump_ratio", fit_jump_ratio, 0.0f, 1.0f);
   }
 };
 

@@ -32,6 +32,45 @@ void fit_segment(const NormalGrid& g, Segment& s) {
   fit_plane(s.sums, s);
 }
 
+namespace {
+
+// Whether cell c of segment `label` lies at a depth jump: a 4-neighbour with a point, of no segment
+// or another, nearer or farther by more than jump_ratio of its depth.
+bool at_depth_jump(const NormalGrid& g, const std::vector<int>& labels, int label, int c, float jump_ratio) {
+  const int gx = c % g.width, gy = c / g.width;
+  const float limit = jump_ratio * g.points[c].z();
+  const int nb[4] = {gx > 0 ? c - 1 : -1, gx + 1 < g.width ? c + 1 : -1, gy > 0 ? c - g.width : -1,
+                     gy + 1 < g.height ? c + g.width : -1};
+  for (int k : nb)
+    if (k >= 0 && labels[k] != label && g.has_point[k] && std::abs(g.points[k].z() - g.points[c].z()) > limit)
+      return true;
+  return false;
+}
+
+// The segment's plane from its cells away from depth jumps, where at least `min_cells` remain (else
+// from all of them); its sums keep all its cells. A cell at a jump mixes the two surfaces: a
+// time-of-flight camera reads pixels between them (flying pixels), and the cell's mean takes those
+// within normals.jump_ratio of its nearest surface. On a strip between two jumps (a tread seen from
+// above between its nosing and the level beyond, a riser seen from below) both edges move the same
+// way round and tilt it: a Kinect v2's treads 1.5-3 m down a flight tilted 2-8 deg, the nearer ones
+// most of all beside the floor they set the pitch by, 1.8-2.9 deg off, and the far steps came out
+// a half rise off, false. The normal faces the way the cells' own normals do (`normal_sum`): a
+// segment one row of cells wide is a line, any plane through it fits, and which way a least-squares
+// normal faces the camera is a coin toss there (a real Kinect v2's first riser, seen from above).
+void fit_segment_away_from_jumps(const NormalGrid& g, const std::vector<int>& labels, int label, float jump_ratio,
+                                 size_t min_cells, const Eigen::Vector3f& normal_sum, Segment& s) {
+  PlaneSums jumps;
+  for (int c : s.cells) {
+    s.sums.add(g.points[c]);
+    if (jump_ratio > 0.0f && at_depth_jump(g, labels, label, c, jump_ratio)) jumps.add(g.points[c]);
+  }
+  const PlaneSums away = s.sums - jumps;
+  fit_plane(jumps.n > 0 && away.n >= static_cast<double>(min_cells) ? away : s.sums, s);
+  if (s.normal.dot(normal_sum) < 0.0f) s.normal = -s.normal;
+}
+
+}  // namespace
+
 std::vector<Segment> grow_regions(const NormalGrid& g, const RegionGrowingConfig& cfg, int image_width,
                                   int image_height, std::vector<int>& labels) {
   const int n = g.width * g.height;
@@ -84,7 +123,7 @@ std::vector<Segment> grow_regions(const NormalGrid& g, const RegionGrowingConfig
     }
     Segment s;
     s.cells = grown;
-    fit_segment(g, s);
+    fit_segment_away_from_jumps(g, labels, label, cfg.fit_jump_ratio, min_cells, normal_sum, s);
     segments.push_back(std::move(s));
   }
   for (int& l : labels)

@@ -51,6 +51,8 @@ void fit_plane(const PlaneSums& sums, Segment& s);
 // Grows segments with the "last normal" model: a neighbour joins when its
 // normal is close to the normal of the cell it is reached from and it lies on
 // that cell's tangent plane. Drops segments smaller than the scaled minimum.
+// Each plane is fitted to its segment's cells away from depth jumps
+// (cfg.fit_jump_ratio: cells there mix two surfaces), facing as its cells' normals.
 // `labels` (reused) gets the segment index per cell or -1.
 std::vector<Segment> grow_regions(const NormalGrid& grid, const RegionGrowingConfig& cfg, int image_width,
                                   int image_height, std::vector<int>& labels);

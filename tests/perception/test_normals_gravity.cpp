@@ -117,6 +117,46 @@ TEST(PerceptionRegionGrowing, StairsAreSegmentedIntoTreadsAndRisers) {
   // The top level is in view: floor + 3 treads + 3 risers at least.
 }
 
+// A tread seen from above between two depth jumps, as a time-of-flight camera reads it: its far row
+// of cells mixed with the level beyond (3 % farther along the ray), its near row with the nosing in
+// front (3 % nearer). Its plane is fitted to the rows between; all of them tilt it.
+TEST(PerceptionRegionGrowing, AStripBetweenDepthJumpsIsFittedAwayFromItsMixedEdges) {
+  const int w = 80, h = 60, cell = 8;
+  const Intrinsics K{640, 480, 525.0, 525.0, 319.5, 239.5};
+  NormalGrid g;
+  g.width = w, g.height = h, g.cell_px = cell;
+  g.points.assign(w * h, Eigen::Vector3f::Zero());
+  g.normals.assign(w * h, Eigen::Vector3f::Zero());
+  g.has_point.assign(w * h, 0);
+  g.has_normal.assign(w * h, 0);
+  g.filled.assign(w * h, 0);
+  const float below_m = 0.5f;  // the tread's plane y = below_m (optical frame, y down)
+  // Rows 40-47 are the tread; row 39 the level beyond (30 % farther), row 48 the nosing (30 % nearer).
+  const auto scale_of_row = [](int gy) { return gy == 39 ? 1.3f : gy == 40 ? 1.03f : gy == 47 ? 0.97f : gy == 48 ? 0.7f : 1.0f; };
+  for (int gy = 39; gy <= 48; ++gy)
+    for (int gx = 0; gx < w; ++gx) {
+      const Eigen::Vector3f ray(static_cast<float>(((gx + 0.5) * cell - K.cx) / K.fx),
+                                static_cast<float>(((gy + 0.5) * cell - K.cy) / K.fy), 1.0f);
+      const int i = g.index(gx, gy);
+      g.points[i] = ray * (below_m / ray.y()) * scale_of_row(gy);
+      g.normals[i] = -Eigen::Vector3f::UnitY();
+      g.has_point[i] = g.has_normal[i] = g.filled[i] = 1;
+    }
+  const auto tread_tilt_deg = [&](const RegionGrowingConfig& cfg) {
+    std::vector<int> labels;
+    const auto segs = grow_regions(g, cfg, K.width, K.height, labels);
+    for (const Segment& s : segs)
+      if (s.cells.size() == static_cast<size_t>(8 * w))
+        return std::acos(std::min(1.0f, s.normal.dot(-Eigen::Vector3f::UnitY()))) * 180.0 / M_PI;
+    ADD_FAILURE() << "no segment of the tread's 8 rows among " << segs.size();
+    return 180.0;
+  };
+  RegionGrowingConfig cfg;
+  EXPECT_LT(tread_tilt_deg(cfg), 0.05);
+  cfg.fit_jump_ratio = 0.0f;  // all its cells: the mixed rows tilt it
+  EXPECT_GT(tread_tilt_deg(cfg), 0.5);
+}
+
 TEST(PerceptionRegionGrowing, SmallPlanesAreDroppedWithTheScaledThreshold) {
   PerceptionConfig cfg;
   cfg.region_growing.min_plane_px_320 = 1000000;  // larger than any frame

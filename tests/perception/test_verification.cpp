@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstdio>
+
 namespace stairs {
 namespace {
 
@@ -51,32 +54,40 @@ TEST(PerceptionVerification, TwoMeasuredRisesThatDisagreeAreNoFlight) {
   for (const Step& st : regular.steps) EXPECT_FALSE(st.inferred & kStepRiserInferred);
 }
 
-// A kitchen table with chairs (stairs-sim's kitchen_table, seed 2) seen from
+// A kitchen table with chairs (stairs-sim's kitchen_table, size draws 2 and 6) seen from
 // 1.4 m at 1.2 m: a chair seat and the table top fit the grammar as a
 // two-step flight; beneath the seat's front the view runs on to the floor.
 // Over three seconds of the walk, no frame is a staircase, and every frame the
 // grammar alone (every check off) takes for a flight is refuted for that view.
 TEST(PerceptionVerification, AChairBeforeATableIsNoStaircaseSeenThroughBeneathTheSeat) {
-  const sim::Scene scene = sim::furniture_scene("kitchen_table", 2);
-  sim::TrajectoryConfig tc = sim::trajectory_defaults(sim::Carrier::HandHeld);
-  tc.height_m = 1.4;
-  tc.pitch_deg = -30;
-  tc.fps = 10;
-  const sim::Trajectory traj(scene, tc);
-  sim::Renderer r(scene, Intrinsics{640, 480, 525.0, 525.0, 319.5, 239.5}, sim::SensorModel{}, 2);
   PerceptionConfig unverified;
   VerificationConfig& v = unverified.verification;
   v.riser_support = v.foot_support = v.widths = v.alignment = v.regularity = false;
   int flights = 0;
-  for (int k = 30; k < 60; ++k) {
-    const DepthImage img = r.render(traj.pose(k), static_cast<int64_t>(traj.time_s(k) * 1e6), k);
-    const Observation o = Pipeline().process(img);
-    EXPECT_TRUE(o.steps.empty()) << "frame " << k << ": " << o.status;
-    const Observation u = Pipeline(unverified).process(img);
-    if (u.steps.size() < 2) continue;
-    ++flights;
-    EXPECT_NE(o.status.find("seen through beneath the nosing"), std::string::npos) << "frame " << k << ": " << o.status;
+  // Two size draws of the family: since planes are fitted away from depth jumps
+  // (region_growing.fit_jump_ratio) the grammar takes 8 frames of draw 2 alone for a flight, fewer than
+  // this test wants refuted; draw 6 adds 21. (Draws 1, 3, 4, 5: 0-10 such frames, none a staircase
+  // either; two of them refuted by their rises, 0.77 m and 5 cm off the other, not beneath a seat.)
+  for (const uint64_t draw : {2u, 6u}) {
+    const sim::Scene scene = sim::furniture_scene("kitchen_table", draw);
+    sim::TrajectoryConfig tc = sim::trajectory_defaults(sim::Carrier::HandHeld);
+    tc.height_m = 1.4;
+    tc.pitch_deg = -30;
+    tc.fps = 10;
+    const sim::Trajectory traj(scene, tc);
+    sim::Renderer r(scene, Intrinsics{640, 480, 525.0, 525.0, 319.5, 239.5}, sim::SensorModel{}, 2);
+    for (int k = 30; k < 60; ++k) {
+      const DepthImage img = r.render(traj.pose(k), static_cast<int64_t>(traj.time_s(k) * 1e6), k);
+      const Observation o = Pipeline().process(img);
+      EXPECT_TRUE(o.steps.empty()) << "draw " << draw << " frame " << k << ": " << o.status;
+      const Observation u = Pipeline(unverified).process(img);
+      if (u.steps.size() < 2) continue;
+      ++flights;
+      EXPECT_NE(o.status.find("seen through beneath the nosing"), std::string::npos)
+          << "draw " << draw << " frame " << k << ": " << o.status;
+    }
   }
+  std::printf("%d frames the grammar alone takes for a flight\n", flights);
   EXPECT_GE(flights, 10);
 }
 
