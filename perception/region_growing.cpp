@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace stairs {
@@ -34,14 +35,18 @@ void fit_segment(const NormalGrid& g, Segment& s) {
 
 namespace {
 
+// The cells left, right, above and below cell c (-1 off the grid).
+std::array<int, 4> four_neighbours(const NormalGrid& g, int c) {
+  const int gx = c % g.width, gy = c / g.width;
+  return {gx > 0 ? c - 1 : -1, gx + 1 < g.width ? c + 1 : -1, gy > 0 ? c - g.width : -1,
+          gy + 1 < g.height ? c + g.width : -1};
+}
+
 // Whether cell c of segment `label` lies at a depth jump: a 4-neighbour with a point, of no segment
 // or another, nearer or farther by more than jump_ratio of its depth.
 bool at_depth_jump(const NormalGrid& g, const std::vector<int>& labels, int label, int c, float jump_ratio) {
-  const int gx = c % g.width, gy = c / g.width;
   const float limit = jump_ratio * g.points[c].z();
-  const int nb[4] = {gx > 0 ? c - 1 : -1, gx + 1 < g.width ? c + 1 : -1, gy > 0 ? c - g.width : -1,
-                     gy + 1 < g.height ? c + g.width : -1};
-  for (int k : nb)
+  for (int k : four_neighbours(g, c))
     if (k >= 0 && labels[k] != label && g.has_point[k] && std::abs(g.points[k].z() - g.points[c].z()) > limit)
       return true;
   return false;
@@ -101,13 +106,10 @@ std::vector<Segment> grow_regions(const NormalGrid& g, const RegionGrowingConfig
       normal_sum += g.normals[c];
       // Within region_angle of the mean normal: n.s >= cos |s|, squared (no root per cell).
       const float region_bound = cos_region * cos_region * normal_sum.squaredNorm();
-      const int gx = c % g.width, gy = c / g.width;
       const Eigen::Vector3f& nc = g.normals[c];
       const Eigen::Vector3f& pc = g.points[c];
       const float tol = std::min(cfg.distance_m * pc.z() * pc.z(), cfg.max_distance_m) + cfg.distance_floor_m;
-      const int nb[4] = {gx > 0 ? c - 1 : -1, gx + 1 < g.width ? c + 1 : -1, gy > 0 ? c - g.width : -1,
-                         gy + 1 < g.height ? c + g.width : -1};
-      for (int k : nb) {
+      for (int k : four_neighbours(g, c)) {
         if (k < 0 || labels[k] != -1 || !g.has_normal[k]) continue;
         const float to_mean = g.normals[k].dot(normal_sum);
         if (g.normals[k].dot(nc) < cos_max || to_mean < 0 || to_mean * to_mean < region_bound) continue;
