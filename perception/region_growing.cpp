@@ -70,7 +70,7 @@ void fit_segment_away_from_jumps(const NormalGrid& g, const std::vector<int>& la
     if (jump_ratio > 0.0f && at_depth_jump(g, labels, label, c, jump_ratio)) jumps.add(g.points[c]);
   }
   const PlaneSums away = s.sums - jumps;
-  fit_plane(jumps.n > 0 && away.n >= static_cast<double>(min_cells) ? away : s.sums, s);
+  fit_plane(away.n >= static_cast<double>(min_cells) ? away : s.sums, s);
   if (s.normal.dot(normal_sum) < 0.0f) s.normal = -s.normal;
 }
 
