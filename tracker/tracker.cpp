@@ -156,6 +156,12 @@ double Tracker::prior_x_uncertainty_m(int64_t utime, bool with_odometry) const {
   return x_measured_uncertainty_m_ + speed_change_mps_ * t + 0.5 * config_.motion.max_accel_mps2 * t * t;
 }
 
+// Whether the prior's position along the stair is known to better than half a tread at `utime`: else
+// the nearest step to it may be either neighbour, and it tells no whole-step shifts apart.
+bool Tracker::prior_tells_steps_apart(int64_t utime, bool with_odometry) const {
+  return prior_x_uncertainty_m(utime, with_odometry) < 0.5 * typical_tread_m(map_, config_.stair);
+}
+
 // The yaw the observed stair axis gives: near the prior's, or near the last placed pose's. The
 // prior turns on at the window's yaw rate, and one frame's axis 10 degrees off (clutter beside a
 // flight) gave it one: it turned on 3 degrees a frame, the right axes fell outside the jump around
@@ -421,10 +427,8 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   // stair was lost (the prior is stale), or the prior is both refuted and uncertain by half a tread or
   // more. A robot whose body had rocked 13 cm back while the prior carried it on, turned down for
   // 0.5 s, was placed a whole step up by the shift nearest that prior (a step above the top landing).
-  const bool guessed =
-      ambiguous && (model_.state == TrackingState::Lost ||
-                    (prior_refuted_ && prior_x_uncertainty_m(obs.source_utime, with_odometry) >=
-                                           0.5 * typical_tread_m(map_, config_.stair)));
+  const bool steps_apart = prior_tells_steps_apart(obs.source_utime, with_odometry);
+  const bool guessed = ambiguous && (model_.state == TrackingState::Lost || (prior_refuted_ && !steps_apart));
   // Entirely beyond the model (the next flight seen from a landing): nothing
   // to register against, so the motion prior places it while it is fresh.
   // Or only the level it stands on overlaps the model (that landing, its near part seen before):
@@ -437,8 +441,13 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   const bool on_nosings = input.riser_points.empty() && input.tread_points.empty() &&
                           reg.x_within >= config_.confirmation.min_seed_steps && reg.x_inliers == reg.x_within;
   if (on_nosings) reg.inlier_ratio = 1.0;
+  // With nothing of it on the model, the prior alone says where along the stair its steps go; one
+  // uncertain by half a tread or more may put them where a neighbouring step belongs (a hand-held
+  // descent's near steps, seen 1.2 s after its far ones with the prior 0.8 m uncertain, were merged
+  // 17 cm off: a 1.06 m "landing" inside the flight and 6 false model steps). Not merged, they wait
+  // for a frame that also shows the model.
   const bool unplaced = (with_odometry || since_accept_s <= config_.motion.max_prediction_s) &&
-                        ((reg.within == 0 && !on_nosings) || reg.x_inliers == 0);
+                        (reg.within == 0 ? !on_nosings && steps_apart : reg.x_inliers == 0);
   const Pose4 by_prior = unplaced ? with_observed_height(obs, start_pose) : start_pose;
   const bool dead_reckoned =
       unplaced && (reg.within == 0 || foot_agreement_beyond_model(input, map_, by_prior, config_.registration,

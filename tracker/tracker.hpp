@@ -74,6 +74,7 @@ class Tracker {
   // uncertainty where it alone placed the camera); registration.position_uncertainty_m is added to it.
   void publish(const Observation& obs, const Pose4& pose, bool camera_valid, double x_uncertainty_m = 0.0);
   double prior_x_uncertainty_m(int64_t utime, bool with_odometry) const;
+  bool prior_tells_steps_apart(int64_t utime, bool with_odometry) const;
   void note_speed_change();
 
   TrackerConfig config_;
