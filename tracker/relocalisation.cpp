@@ -2,6 +2,7 @@
 
 #include "tracker/config.hpp"
 
+#include <cmath>
 #include <vector>
 
 namespace stairs {
@@ -30,21 +31,33 @@ Registration relocalise(const RegistrationInput& in, const StairMap& map, const 
     // fitted best a whole step back (the new flight's points then lay on the model) and the tracker
     // re-seeded the second flight onto the first.
     if (k > 1 && k * half_step.x() > max_shift_m) break;
-    Registration pair[2];
-    for (int side = 0; side < 2; ++side) {
-      Pose4 start = prior;
-      start.t_m += (side == 0 ? k : -k) * half_step;
-      pair[side] = register_to_map(in, map, start, registration, stair);
-      tried.push_back(pair[side]);
+    // Along the stair's slope (a walker or a robot moving on along it), and, from a prior that is not
+    // stale, along the stair at its height: a camera swinging on a robot's pitching body moves on or
+    // back with little height change (a robot's camera 25 cm behind its prior at the same height was
+    // fitted from no start on the slope: those a tread back start 10 cm below it, ICP took the tread
+    // below there, and the one fit it found, a whole step up, looked unambiguous: a false step above
+    // the flight). A lost stair's prior is stale in height too, and every shift is tried: level starts
+    // there fitted a flight seen after a gap onto the other one on 3 risers and nosings.
+    for (const double slope : {1.0, 0.0}) {
+      if (slope == 0.0 && !std::isfinite(max_shift_m)) break;
+      Registration pair[2];
+      for (int side = 0; side < 2; ++side) {
+        Pose4 start = prior;
+        const double shift = side == 0 ? k : -k;
+        start.t_m.x() += shift * half_step.x();
+        start.t_m.z() += slope * shift * half_step.z();
+        pair[side] = register_to_map(in, map, start, registration, stair);
+        tried.push_back(pair[side]);
+      }
+      // The same shift back and forth, neither clearly better: the one that ends nearer the prior (a
+      // robot's camera on a 1.1 m mast, rocking 10 cm a frame over the nosings, was put a step back
+      // by the start tried first, four frames in a row, and the tracker ran up the stair adding steps).
+      const bool second = clearly_better(pair[1], pair[0]) ||
+                          (!clearly_better(pair[0], pair[1]) && off_prior_m(pair[1]) < off_prior_m(pair[0]));
+      const Registration& r = pair[second ? 1 : 0];
+      // A shift must beat the prior (and the smaller shifts) clearly.
+      if (clearly_better(r, best)) best = r;
     }
-    // The same shift back and forth, neither clearly better: the one that ends nearer the prior (a
-    // robot's camera on a 1.1 m mast, rocking 10 cm a frame over the nosings, was put a step back
-    // by the start tried first, four frames in a row, and the tracker ran up the stair adding steps).
-    const bool second = clearly_better(pair[1], pair[0]) ||
-                        (!clearly_better(pair[0], pair[1]) && off_prior_m(pair[1]) < off_prior_m(pair[0]));
-    const Registration& r = pair[second ? 1 : 0];
-    // A shift must beat the prior (and the smaller shifts) clearly.
-    if (clearly_better(r, best)) best = r;
   }
   // Another whole-step shift (more than half a step from the winner) that the winner does not beat
   // clearly: the observation fits either, and the winner is the tie-break's.

@@ -1430,3 +1430,4 @@ TEST(Tracker, StepsNothingOnTheModelPlacesAreNotMergedWhereAnUncertainPriorWould
   const Accuracy a = score(tracker.model(), stair);
   EXPECT_GE(a.matched, 5) << tracker.model().status;
 }
+
