@@ -1399,9 +1399,9 @@ TEST(TrackerRelocalisation, SaysWhenAnotherWholeStepShiftFitsAsWell) {
 
 // A hand-held descent: the far steps seen first, then 0.6 s without a frame while the walker stood
 // still and the constant-velocity prior carried it on 0.36 m, then only the two nearest steps, which
-// the model does not hold yet. Nothing of them lies on the model: the prior alone would place them,
-// height and all, and it may be off by more than half a tread by then (the walker could have kept
-// walking, stopped or sped up). Merged where it said, they lay a third of a metre down the flight:
+// the model does not hold yet. Nothing of them lies on the model: the prior alone would say where
+// along the stair they go, and it may be off by more than half a tread by then (the walker could
+// have kept walking, stopped or sped up). Merged where it said, they lay a third of a metre down the flight:
 // a false "landing" and 2 false steps. Not merged, the model keeps its far steps and no false one.
 TEST(Tracker, StepsNothingOnTheModelPlacesAreNotMergedWhereAnUncertainPriorWouldPutThem) {
   const StairGeometry stair = make_stair(10, 0.17, 0.28, 1.5);
@@ -1430,4 +1430,3 @@ TEST(Tracker, StepsNothingOnTheModelPlacesAreNotMergedWhereAnUncertainPriorWould
   const Accuracy a = score(tracker.model(), stair);
   EXPECT_GE(a.matched, 5) << tracker.model().status;
 }
-
