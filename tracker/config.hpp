@@ -179,6 +179,9 @@ struct MergeConfig {
                                         // (one riser has one nosing: two at one x are one step measured twice)
   int min_tread_plane_observations = 2;  // observations of a tread plane before its height overrides the
                                         // step's edges (one sliver at a grazing angle is no measurement)
+  double link_shift_fraction = 0.25;    // of a tread (x) and a riser (z): a flight the motion prior placed moves
+                                        // by at most this to where one frame puts it (prior_links.hpp; matched to
+                                        // the nearest step, the next one lies three times as far)
 
   template <class V>
   void visit(V& v) {
@@ -191,6 +194,7 @@ struct MergeConfig {
     v("min_rise_fraction", min_rise_fraction, 0.0, 1.0);
     v("min_run_fraction", min_run_fraction, 0.0, 1.0);
     v("min_tread_plane_observations", min_tread_plane_observations, 1, 1000);
+    v("link_shift_fraction", link_shift_fraction, 0.0, 0.5);
   }
 };
 

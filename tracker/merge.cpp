@@ -149,12 +149,10 @@ std::vector<ObservedStep> observed_steps(const Observation& obs, const Pose4& po
   return out;
 }
 
-int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4& pose, const MergeConfig& c,
-          const StairPriorConfig& stair, double min_distance_m) {
+std::vector<int> match_steps(const StairMap& map, const std::vector<ObservedStep>& observed, const MergeConfig& c,
+                             const StairPriorConfig& stair) {
   const double riser = typical_riser_m(map, stair);
   const double tread = typical_tread_m(map, stair);
-  ++map.merges;
-  // Match against the model as it was before this observation.
   std::vector<int> match(observed.size(), -1);
   std::vector<bool> taken(map.steps.size(), false);
   for (size_t i = 0; i < observed.size(); ++i) {
@@ -169,6 +167,16 @@ int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4&
     }
     if (match[i] >= 0) taken[match[i]] = true;
   }
+  return match;
+}
+
+int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4& pose, const MergeConfig& c,
+          const StairPriorConfig& stair, double min_distance_m) {
+  const double riser = typical_riser_m(map, stair);
+  const double tread = typical_tread_m(map, stair);
+  // Match against the model as it was before this observation.
+  const std::vector<int> match = match_steps(map, observed, c, stair);
+  ++map.merges;
   for (size_t i = 0; i < observed.size(); ++i)
     if (match[i] >= 0) {
       update(map.steps[match[i]], observed[i], pose, c, min_distance_m);

@@ -43,6 +43,11 @@ bool agrees_where_it_overlaps(const StairMap& map, const std::vector<ObservedSte
 bool matches(const StairMap& map, const ObservedStep& o, const MapStep& m, const MergeConfig& c,
              const StairPriorConfig& stair);
 
+// For each observed step the model step it matches (the nearest within merge's tolerances, each
+// model step taken once, in the observation's order), or -1.
+std::vector<int> match_steps(const StairMap& map, const std::vector<ObservedStep>& observed, const MergeConfig& c,
+                             const StairPriorConfig& stair);
+
 // Returns the number of new steps inserted.
 int merge(StairMap& map, const std::vector<ObservedStep>& observed, const Pose4& pose, const MergeConfig& c,
           const StairPriorConfig& stair, double min_distance_m);

@@ -4,6 +4,7 @@
 #include "tracker/merge.hpp"
 #include "tracker/model_output.hpp"
 #include "tracker/nosing_overhang.hpp"
+#include "tracker/prior_links.hpp"
 #include "tracker/reconstruction.hpp"
 #include "tracker/registration.hpp"
 #include "tracker/relocalisation.hpp"
@@ -489,10 +490,41 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
     place_by_prior(obs, prior, with_odometry, since_accept_s, why);
     return;
   }
+  // Registered on the model's steps across a link the prior placed: the frame's steps measure it.
+  if (!dead_reckoned) reg = across_prior_links(obs, input, reg);
   accept(obs, reg.pose, !dead_reckoned);
   model_.state = relocalising && !dead_reckoned ? TrackingState::Relocalised : TrackingState::Ok;
   model_.status = dead_reckoned ? "beyond the model: placed by the motion prior" : relocalising ? "relocalised" : "ok";
   publish(obs, reg.pose, true, dead_reckoned ? prior_x_uncertainty_m(obs.source_utime, with_odometry) : 0.0);
+}
+
+// Where the registered frame sees steps on both sides of a link the motion prior placed, the part
+// beyond it moves by the offset the frame's steps measure, and the frame is registered again on the
+// model so corrected; its pose history moves with it (the map moved under the camera, not the
+// camera), so the velocity the prior keeps is unchanged. A robot whose body pitched up at a flight's
+// foot saw only the next flight for a frame, placed 5.3 cm off by the prior; registered on that
+// flight from then on, its camera stayed 5.3 cm off along the first one for 13 s (the step beneath
+// it wrong at every nosing).
+Registration Tracker::across_prior_links(const Observation& obs, const RegistrationInput& input,
+                                         const Registration& reg) {
+  // Outward from the model's first part: each closed link anchors the part beyond it for the next.
+  const std::vector<ObservedStep> observed = observed_steps(obs, reg.pose);
+  std::optional<StairMap> before;
+  while (const auto closure = measure_prior_link(map_, observed, config_.merge, config_.stair)) {
+    if (!before) before = map_;
+    close_prior_link(map_, *closure);
+  }
+  if (!before) return reg;
+  // A correction the frame cannot be registered on is not made.
+  const Registration again = register_to_map(input, map_, reg.pose, config_.registration, config_.stair);
+  if (again.inlier_ratio < config_.motion.min_inlier_ratio || again.x_inliers == 0) {
+    map_ = std::move(*before);
+    return reg;
+  }
+  const Eigen::Vector3d moved = again.pose.t_m - reg.pose.t_m;
+  for (Accepted& a : accepted_) a.pose.t_m += moved;
+  if (placed_) placed_->pose.t_m += moved;
+  return again;
 }
 
 // A model only its seed supports is no better evidence than this rejected
@@ -511,7 +543,9 @@ bool Tracker::reseed(const Observation& obs, const std::string& why) {
 // the velocity window.
 void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured) {
   const std::vector<ObservedStep> observed = observed_with_overhang(obs, pose);
-  merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
+  if (merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m) > 0 &&
+      !x_measured)
+    open_prior_links(map_);
   note_floor(obs, observed);
   if (x_measured) note_end_wall(obs, pose, 0.0);
   reconstruct_occluded_steps(map_, config_.reconstruction, config_.stair, config_.confirmation.min_confirmations,

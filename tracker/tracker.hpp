@@ -51,6 +51,8 @@ class Tracker {
   bool reseed(const Observation& obs, const std::string& why);
   // x_measured: the pose was registered on the model (not carried on by the prior).
   void accept(const Observation& obs, const Pose4& pose, bool x_measured);
+  // `reg` with the links to steps the prior placed that its frame sees across measured and closed.
+  Registration across_prior_links(const Observation& obs, const RegistrationInput& input, const Registration& reg);
   // Marks the model's first step as standing on a seen floor (tracker.cpp).
   void note_floor(const Observation& obs, const std::vector<ObservedStep>& observed);
   // Whether the observation sees a floor before its lowest step (deeper than any tread, nothing below).

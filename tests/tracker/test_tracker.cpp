@@ -571,6 +571,61 @@ TEST(Tracker, TheNextFlightSeenFromALandingAfterAGapIsPlacedBeyondIt) {
   expect_accurate(r, kTwoFlights, "second flight first seen from the landing after a gap");
 }
 
+// A frame that shows nothing of the model (the next flight only: a walker glancing up after 0.3 s
+// looking away, having slowed 4 cm behind the constant-velocity prior) is merged where the prior
+// puts it, its steps as far off the flight before them as the prior was. Registered on that flight
+// from then on, the camera stayed as far off along the first one (a robot on two flights: 5.3 cm,
+// the step beneath it wrong at every nosing for 13 s). The first frame that sees both flights
+// measures the offset and the model's second flight moves by it.
+TEST(Tracker, AFlightThePriorPlacedMovesToWhereAFrameSeeingBothFlightsPutsIt) {
+  ObservationMaker maker(kTwoFlights, 12);
+  Tracker tracker;
+  // A robot at 10 Hz whose body rocks 3 cm back and forth along the stair as it climbs.
+  auto cams = walk(kTwoFlights, true, 0.3, 10.0);
+  for (size_t j = 0; j < cams.size(); ++j) cams[j].position_m.x() += 0.03 * std::sin(2 * M_PI * j / 8.0);
+  const double split_x = kTwoFlights.nosing_x(5) + 0.6;  // mid landing
+  // Steps of one flight only: stair-frame x from the camera's (heading 0: x forward).
+  const auto only = [&](Observation& obs, const CameraState& cam, bool second) {
+    keep_steps_if(obs, [&](const Step& s) { return (s.nosing_m.x() + cam.position_m.x() > split_x) == second; });
+    if (obs.steps.size() < 2) keep_steps_if(obs, [](const Step&) { return false; });
+  };
+  size_t k = 0;
+  for (; k < cams.size() && cams[k].position_m.x() < kTwoFlights.nosing_x(2); ++k) {
+    Observation obs = maker.make(cams[k], static_cast<int64_t>(k) * 100000);
+    only(obs, cams[k], false);
+    tracker.update(obs);
+  }
+  ASSERT_EQ(tracker.model().flights.size(), 1u) << tracker.model().status;
+  // Its body pitches up: the camera swings 4 cm back and sees only the next flight for 1 s.
+  for (size_t j = k; j < cams.size(); ++j) cams[j].position_m.x() -= 0.04;
+  int second_only = 0;
+  for (; second_only < 10 && k < cams.size(); ++k) {
+    Observation obs = maker.make(cams[k], static_cast<int64_t>(k) * 100000);
+    only(obs, cams[k], true);
+    second_only += obs.steps.empty() ? 0 : 1;
+    tracker.update(obs);
+  }
+  ASSERT_EQ(second_only, 10);
+  ASSERT_EQ(tracker.model().flights.size(), 2u) << tracker.model().status;
+  const auto camera_error_m = [&](const StairModel& m, size_t at) {
+    return camera_past_first_nosing_m(m) - (cams[at].position_m.x() - kTwoFlights.nosing_x(0));
+  };
+  const double off_before_m = camera_error_m(tracker.model(), k - 1);
+  // Then both flights in view for 0.5 s.
+  for (const size_t end = k + 5; k < end; ++k) tracker.update(maker.make(cams[k], static_cast<int64_t>(k) * 100000));
+  const StairModel& m = tracker.model();
+  ASSERT_TRUE(m.camera_valid) << m.status;
+  ASSERT_EQ(m.flights.size(), 2u) << m.status;
+  EXPECT_NEAR(camera_error_m(m, k - 1), 0.0, 0.015) << m.status;
+  const Step& landing = m.flights[0].steps.back();
+  ASSERT_TRUE(landing.landing);
+  const double landing_m = m.flights[1].steps[0].nosing_m.x() - landing.nosing_m.x();
+  std::printf("camera %.1f cm off along the first flight with only the second in view, %.1f cm once both were; "
+              "landing %.3f m (real %.3f m)\n",
+              100 * off_before_m, 100 * camera_error_m(m, k - 1), landing_m, kTwoFlights.tread_m[5]);
+  EXPECT_NEAR(landing_m, kTwoFlights.tread_m[5], 0.015);
+}
+
 // The level the lowest seen step stands on joins registration only where it
 // reaches that step's riser: a table top at the height of the floor, 0.6 m in
 // front of a flight, is no floor of it.
