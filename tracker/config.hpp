@@ -179,9 +179,9 @@ struct MergeConfig {
                                         // (one riser has one nosing: two at one x are one step measured twice)
   int min_tread_plane_observations = 2;  // observations of a tread plane before its height overrides the
                                         // step's edges (one sliver at a grazing angle is no measurement)
-  double link_shift_fraction = 0.25;    // of a tread (x) and a riser (z): a flight the motion prior placed moves
-                                        // by at most this to where one frame puts it (prior_links.hpp; matched to
-                                        // the nearest step, the next one lies three times as far)
+  double link_shift_fraction = 0.25;    // of a tread: steps the motion prior placed move along the stair by at
+                                        // most this to where one frame puts them (prior_links.hpp; matched to the
+                                        // nearest step, the next one lies three times as far)
 
   template <class V>
   void visit(V& v) {

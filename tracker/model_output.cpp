@@ -135,10 +135,13 @@ Beneath beneath(const StairModel& m, double x) {
 // Whether every nosing lies farther than `uncertainty_m` from x along the stair: else the step
 // beneath x is a guess between two (a robot's climb placed by constant velocity alone for 0.8 s
 // was 7.5 cm behind and one step low, its height a riser off).
-bool clear_of_nosings(const StairModel& m, double x, double uncertainty_m) {
+// `link_m`: per published step, how far off the motion prior may have placed it relative to the
+// steps the camera was registered on (prior_links.hpp), which adds to the uncertainty near it.
+bool clear_of_nosings(const StairModel& m, double x, double uncertainty_m, const std::vector<double>& link_m) {
+  size_t k = 0;
   for (const Flight& f : m.flights)
     for (const Step& s : f.steps)
-      if (std::abs(s.nosing_m.x() - x) <= uncertainty_m) return false;
+      if (std::abs(s.nosing_m.x() - x) <= uncertainty_m + link_m[k++]) return false;
   return true;
 }
 
@@ -154,7 +157,8 @@ bool over_seen_part(const MapStep& first, double seen_to_x, const Eigen::Vector3
 // The camera in the model: its pose, the step beneath and its height over that step's tread;
 // known only over the part of the stair the model has seen.
 void place_camera(const Pose4& camera, const Eigen::Quaterniond& gravity_rotation, const Eigen::Vector3d& origin,
-                  const MapStep& first, double seen_to_x, double x_uncertainty_m, StairModel& out) {
+                  const MapStep& first, double seen_to_x, double x_uncertainty_m, const std::vector<double>& link_m,
+                  StairModel& out) {
   const Eigen::Vector3d cam = camera.t_m - origin;
   out.camera_position_m = cam;
   out.camera_orientation = Eigen::Quaterniond(camera.rotation()) * gravity_rotation;
@@ -163,12 +167,12 @@ void place_camera(const Pose4& camera, const Eigen::Quaterniond& gravity_rotatio
   out.camera_step_index = b.step;
   out.camera_height_m = cam.z() - b.surface_z_m;
   out.camera_beneath_known =
-      over_seen_part(first, seen_to_x, origin, cam.x()) && clear_of_nosings(out, cam.x(), x_uncertainty_m);
+      over_seen_part(first, seen_to_x, origin, cam.x()) && clear_of_nosings(out, cam.x(), x_uncertainty_m, link_m);
 }
 
 // The carrier's base from the placed camera and the mount (common/mount.hpp base_of_camera).
 void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const MapStep& first, double seen_to_x,
-                double x_uncertainty_m, StairModel& out) {
+                double x_uncertainty_m, const std::vector<double>& link_m, StairModel& out) {
   out.base_valid = out.camera_valid && mount.configured();
   if (!out.base_valid) return;
   const Eigen::Isometry3d base = base_of_camera(out.camera_position_m, out.camera_orientation, mount);
@@ -178,13 +182,13 @@ void place_base(const MountConfig& mount, const Eigen::Vector3d& origin, const M
   out.base_step_index = b.step;
   out.base_height_m = out.base_position_m.z() - b.surface_z_m;
   out.base_beneath_known = over_seen_part(first, seen_to_x, origin, out.base_position_m.x()) &&
-                           clear_of_nosings(out, out.base_position_m.x(), x_uncertainty_m);
+                           clear_of_nosings(out, out.base_position_m.x(), x_uncertainty_m, link_m);
 }
 
 }  // namespace
 
 void fill_model(const StairMap& map, bool just_merged, const Pose4& camera, bool camera_valid, double x_uncertainty_m,
-                const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
+                const std::vector<double>& link_m, const Eigen::Quaterniond& gravity_rotation, const ConfirmationConfig& c,
                 const StairPriorConfig& stair, const MountConfig& mount, double overhang_m, StairModel& out) {
   out.flights.clear();
   out.planes.clear();
@@ -195,6 +199,11 @@ void fill_model(const StairMap& map, bool just_merged, const Pose4& camera, bool
   out.camera_beneath_known = out.base_beneath_known = out.base_valid = false;
   out.camera_position_uncertainty_m = out.camera_valid ? x_uncertainty_m : -1.0;
   if (steps.empty()) return;
+  std::vector<double> published_link_m;
+  for (const MapStep* s : steps)
+    published_link_m.push_back(link_m.empty() ? 0.0 : link_m[static_cast<size_t>(s - map.steps.data())]);
+  // Along the stair from the model's origin, its first step's.
+  if (out.camera_valid) out.camera_position_uncertainty_m += published_link_m.front();
 
   const MapStep& first = *steps.front();
   const double first_riser = first.riser_height_m.known() ? first.riser_height_m.value : typical_riser_m(map, stair);
@@ -219,8 +228,8 @@ void fill_model(const StairMap& map, bool just_merged, const Pose4& camera, bool
   const MapStep& last = *steps.back();
   double seen_to_x = std::max(last.x(), last.tread_far_x_m);
   if (const auto wall = end_wall_x_m(map); wall && &last == &map.steps.back()) seen_to_x = std::max(seen_to_x, *wall);
-  place_camera(camera, gravity_rotation, origin, first, seen_to_x, x_uncertainty_m, out);
-  place_base(mount, origin, first, seen_to_x, x_uncertainty_m, out);
+  place_camera(camera, gravity_rotation, origin, first, seen_to_x, x_uncertainty_m, published_link_m, out);
+  place_base(mount, origin, first, seen_to_x, x_uncertainty_m, published_link_m, out);
 }
 
 std::vector<Step> steps_from_camera(const StairModel& model) {

@@ -41,8 +41,9 @@ struct MapStep {
   bool reconstructed = false;    // filled in between seen steps, never observed
   bool on_seen_floor = false;    // its riser stands on a level seen deeper than any tread (a floor or a
                                  // landing): what lies before it is known, not just one rise below
-  bool prior_link = false;       // the motion prior alone placed it (and the steps placed with it) next to the
-                                 // step before it: open until a registered frame sees both (prior_links.hpp)
+  double prior_link_m = 0.0;     // > 0: the motion prior alone placed it (and the steps placed with it) next to
+                                 // the step before it, this far off at most along the stair (m); 0 once a
+                                 // registered frame saw both (prior_links.hpp)
   std::vector<Eigen::Vector3f> riser_points, tread_points;  // W, ICP rejections, capped
   int riser_points_seen = 0, tread_points_seen = 0;          // for the cyclic cap
 

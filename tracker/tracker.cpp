@@ -72,6 +72,7 @@ bool Tracker::seed(const Observation& obs) {
   merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
   if (map_.empty()) return false;
   note_floor(obs, observed);
+  note_registered_on(observed);
   accepted_.push_back({obs.source_utime, pose, to_base_m(obs)});
   x_measured_utime_ = obs.source_utime;
   x_measured_uncertainty_m_ = 0.0;
@@ -82,6 +83,13 @@ bool Tracker::seed(const Observation& obs) {
   model_.registration_inlier_ratio = 0.0;
   publish(obs, pose, true);
   return true;
+}
+
+void Tracker::note_registered_on(const std::vector<ObservedStep>& observed) {
+  if (observed.empty()) return;
+  std::vector<double> x;
+  for (const ObservedStep& o : observed) x.push_back(o.x());
+  registered_on_x_m_ = median(x);
 }
 
 // The observation's steps in the model, each riser's overhang measured where its slab is in view.
@@ -492,7 +500,9 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   }
   // Registered on the model's steps across a link the prior placed: the frame's steps measure it.
   if (!dead_reckoned) reg = across_prior_links(obs, input, reg);
-  accept(obs, reg.pose, !dead_reckoned);
+  accept(obs, reg.pose, !dead_reckoned,
+         dead_reckoned ? prior_x_uncertainty_m(obs.source_utime, with_odometry) + config_.registration.position_uncertainty_m
+                       : 0.0);
   model_.state = relocalising && !dead_reckoned ? TrackingState::Relocalised : TrackingState::Ok;
   model_.status = dead_reckoned ? "beyond the model: placed by the motion prior" : relocalising ? "relocalised" : "ok";
   publish(obs, reg.pose, true, dead_reckoned ? prior_x_uncertainty_m(obs.source_utime, with_odometry) : 0.0);
@@ -510,7 +520,9 @@ Registration Tracker::across_prior_links(const Observation& obs, const Registrat
   // Outward from the model's first part: each closed link anchors the part beyond it for the next.
   const std::vector<ObservedStep> observed = observed_steps(obs, reg.pose);
   std::optional<StairMap> before;
-  while (const auto closure = measure_prior_link(map_, observed, config_.merge, config_.stair)) {
+  // As many steps on each side as a seed needs (one nosing fits any step).
+  while (const auto closure =
+             measure_prior_link(map_, observed, config_.merge, config_.stair, config_.confirmation.min_seed_steps)) {
     if (!before) before = map_;
     close_prior_link(map_, *closure);
   }
@@ -541,11 +553,14 @@ bool Tracker::reseed(const Observation& obs, const std::string& why) {
 
 // Merges a registered observation into the map and keeps the pose history of
 // the velocity window.
-void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured) {
+void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured, double prior_link_m) {
   const std::vector<ObservedStep> observed = observed_with_overhang(obs, pose);
-  if (merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m) > 0 &&
-      !x_measured)
-    open_prior_links(map_);
+  const int inserted = merge(map_, observed, pose, config_.merge, config_.stair, config_.registration.icp_min_distance_m);
+  if (x_measured) note_registered_on(observed);
+  if (inserted > 0) {
+    if (x_measured) extend_prior_links(map_, registered_on_x_m_);
+    else open_prior_links(map_, prior_link_m);
+  }
   note_floor(obs, observed);
   if (x_measured) note_end_wall(obs, pose, 0.0);
   reconstruct_occluded_steps(map_, config_.reconstruction, config_.stair, config_.confirmation.min_confirmations,
@@ -572,7 +587,15 @@ void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_val
   x_uncertainty_m += config_.registration.position_uncertainty_m;
   // Merged into the map: accepted (seed and accept keep each merged frame's time; times only grow).
   const bool merged = !accepted_.empty() && accepted_.back().utime == obs.source_utime;
-  fill_model(map_, merged, pose, camera_valid, x_uncertainty_m, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
+  // The steps the camera was last registered on: relative to them the prior's links are uncertain.
+  std::vector<double> link_m(map_.steps.size(), 0.0);
+  if (!map_.steps.empty()) {
+    size_t on = 0;
+    for (size_t k = 1; k < map_.steps.size(); ++k)
+      if (std::abs(map_.steps[k].x() - registered_on_x_m_) < std::abs(map_.steps[on].x() - registered_on_x_m_)) on = k;
+    for (size_t k = 0; k < map_.steps.size(); ++k) link_m[k] = link_uncertainty_m(map_, on, k);
+  }
+  fill_model(map_, merged, pose, camera_valid, x_uncertainty_m, link_m, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
              flight_overhang_m(map_, config_.overhang),
              model_);
 }

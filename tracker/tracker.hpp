@@ -50,9 +50,13 @@ class Tracker {
                       const std::string& why);
   bool reseed(const Observation& obs, const std::string& why);
   // x_measured: the pose was registered on the model (not carried on by the prior).
-  void accept(const Observation& obs, const Pose4& pose, bool x_measured);
+  // prior_link_m: where the prior placed it (x_measured false), how far off its new steps may lie from
+  // the model's next to them (prior_links.hpp).
+  void accept(const Observation& obs, const Pose4& pose, bool x_measured, double prior_link_m);
   // `reg` with the links to steps the prior placed that its frame sees across measured and closed.
   Registration across_prior_links(const Observation& obs, const RegistrationInput& input, const Registration& reg);
+  // Where the steps of a frame seeded or registered on the model lie (registered_on_x_m_).
+  void note_registered_on(const std::vector<ObservedStep>& observed);
   // Marks the model's first step as standing on a seen floor (tracker.cpp).
   void note_floor(const Observation& obs, const std::vector<ObservedStep>& observed);
   // Whether the observation sees a floor before its lowest step (deeper than any tread, nothing below).
@@ -108,6 +112,9 @@ class Tracker {
   // A registration from the prior turned down since then for points that disagree with it: the prior
   // is off by more than ICP reaches, by how much unknown.
   bool prior_refuted_ = false;
+  // Along the stair in W, the middle of the steps the last registered frame saw: the part of the model
+  // (between links the prior placed) the camera's position is measured against.
+  double registered_on_x_m_ = 0.0;
   int64_t last_utime_ = 0;
   bool have_utime_ = false;
   int64_t dropped_out_of_order_ = 0, rejected_registrations_ = 0, resets_ = 0, time_jumps_ = 0;

@@ -6,6 +6,7 @@
 #include "tracker/config.hpp"
 #include "tracker/merge.hpp"
 #include "tracker/model_output.hpp"
+#include "tracker/prior_links.hpp"
 #include "tracker/registration.hpp"
 #include "tracker/relocalisation.hpp"
 #include "tracker/tracker.hpp"
@@ -571,44 +572,62 @@ TEST(Tracker, TheNextFlightSeenFromALandingAfterAGapIsPlacedBeyondIt) {
   expect_accurate(r, kTwoFlights, "second flight first seen from the landing after a gap");
 }
 
-// A frame that shows nothing of the model (the next flight only: a walker glancing up after 0.3 s
-// looking away, having slowed 4 cm behind the constant-velocity prior) is merged where the prior
-// puts it, its steps as far off the flight before them as the prior was. Registered on that flight
-// from then on, the camera stayed as far off along the first one (a robot on two flights: 5.3 cm,
-// the step beneath it wrong at every nosing for 13 s). The first frame that sees both flights
-// measures the offset and the model's second flight moves by it.
+// A frame that shows nothing of the model (the next flight only: a robot's body pitching up at a
+// flight's foot, its camera swung 2 cm back against the prior) is merged where the prior puts it,
+// its steps as far off the flight before them as the prior was (5.3 cm here, with the robot's rocking).
+// Registered on that flight from then on, the camera stays as far off along the first one (a robot
+// on two flights: 5.3 cm, the step beneath it wrong at every nosing for 13 s): near a nosing of the
+// first flight its step beneath is unknown. The first frame that sees both flights measures the
+// offset and the model's second flight moves by it.
 TEST(Tracker, AFlightThePriorPlacedMovesToWhereAFrameSeeingBothFlightsPutsIt) {
-  ObservationMaker maker(kTwoFlights, 12);
+  // Nine steps to the mid landing: from the first flight's third tread the camera still sees
+  // several of its steps beyond the next flight's first two.
+  const StairGeometry g = make_stair(14, 0.17, 0.28, 1.5, 8, 1.2);
+  const size_t landing = 8;
+  ObservationMaker maker(g, 12);
   Tracker tracker;
-  // A robot at 10 Hz whose body rocks 3 cm back and forth along the stair as it climbs.
-  auto cams = walk(kTwoFlights, true, 0.3, 10.0);
-  for (size_t j = 0; j < cams.size(); ++j) cams[j].position_m.x() += 0.03 * std::sin(2 * M_PI * j / 8.0);
-  const double split_x = kTwoFlights.nosing_x(5) + 0.6;  // mid landing
+  // A robot at 10 Hz, its camera 1.75 m up, whose body rocks 3 cm back and forth along the stair.
+  auto cams = walk(g, true, 0.3, 10.0);
+  for (size_t j = 0; j < cams.size(); ++j) {
+    cams[j].position_m.x() += 0.03 * std::sin(2 * M_PI * j / 8.0);
+    cams[j].position_m.z() += 0.3;
+  }
+  const double split_x = g.nosing_x(landing) + 0.6;  // mid landing
   // Steps of one flight only: stair-frame x from the camera's (heading 0: x forward).
   const auto only = [&](Observation& obs, const CameraState& cam, bool second) {
     keep_steps_if(obs, [&](const Step& s) { return (s.nosing_m.x() + cam.position_m.x() > split_x) == second; });
     if (obs.steps.size() < 2) keep_steps_if(obs, [](const Step&) { return false; });
   };
   size_t k = 0;
-  for (; k < cams.size() && cams[k].position_m.x() < kTwoFlights.nosing_x(2); ++k) {
+  for (; k < cams.size() && cams[k].position_m.x() < g.nosing_x(2); ++k) {
     Observation obs = maker.make(cams[k], static_cast<int64_t>(k) * 100000);
     only(obs, cams[k], false);
     tracker.update(obs);
   }
   ASSERT_EQ(tracker.model().flights.size(), 1u) << tracker.model().status;
-  // Its body pitches up: the camera swings 4 cm back and sees only the next flight for 1 s.
-  for (size_t j = k; j < cams.size(); ++j) cams[j].position_m.x() -= 0.04;
-  int second_only = 0;
+  // Its body pitches up: the camera swings 2 cm back and sees only the next flight for 1 s.
+  for (size_t j = k; j < cams.size(); ++j) cams[j].position_m.x() -= 0.02;
+  int second_only = 0, known = 0;
   for (; second_only < 10 && k < cams.size(); ++k) {
     Observation obs = maker.make(cams[k], static_cast<int64_t>(k) * 100000);
     only(obs, cams[k], true);
     second_only += obs.steps.empty() ? 0 : 1;
-    tracker.update(obs);
+    const StairModel& m = tracker.update(obs);
+    // Registered on the second flight, the camera is as far off along the first as the prior was:
+    // within that of a nosing of the first, the step beneath it is unknown, not a guess.
+    int truth = -1;
+    while (truth + 1 < static_cast<int>(g.riser_m.size()) && cams[k].position_m.x() >= g.nosing_x(static_cast<size_t>(truth + 1)))
+      ++truth;
+    known += m.camera_beneath_known ? 1 : 0;
+    if (m.camera_beneath_known) {
+      EXPECT_EQ(m.camera_step_index, truth) << k;
+    }
   }
   ASSERT_EQ(second_only, 10);
+  EXPECT_GE(known, 3);
   ASSERT_EQ(tracker.model().flights.size(), 2u) << tracker.model().status;
   const auto camera_error_m = [&](const StairModel& m, size_t at) {
-    return camera_past_first_nosing_m(m) - (cams[at].position_m.x() - kTwoFlights.nosing_x(0));
+    return camera_past_first_nosing_m(m) - (cams[at].position_m.x() - g.nosing_x(0));
   };
   const double off_before_m = camera_error_m(tracker.model(), k - 1);
   // Then both flights in view for 0.5 s.
@@ -617,13 +636,50 @@ TEST(Tracker, AFlightThePriorPlacedMovesToWhereAFrameSeeingBothFlightsPutsIt) {
   ASSERT_TRUE(m.camera_valid) << m.status;
   ASSERT_EQ(m.flights.size(), 2u) << m.status;
   EXPECT_NEAR(camera_error_m(m, k - 1), 0.0, 0.015) << m.status;
-  const Step& landing = m.flights[0].steps.back();
-  ASSERT_TRUE(landing.landing);
-  const double landing_m = m.flights[1].steps[0].nosing_m.x() - landing.nosing_m.x();
+  const Step& mid = m.flights[0].steps.back();
+  ASSERT_TRUE(mid.landing);
+  const double landing_m = m.flights[1].steps[0].nosing_m.x() - mid.nosing_m.x();
   std::printf("camera %.1f cm off along the first flight with only the second in view, %.1f cm once both were; "
               "landing %.3f m (real %.3f m)\n",
-              100 * off_before_m, 100 * camera_error_m(m, k - 1), landing_m, kTwoFlights.tread_m[5]);
-  EXPECT_NEAR(landing_m, kTwoFlights.tread_m[5], 0.015);
+              100 * off_before_m, 100 * camera_error_m(m, k - 1), landing_m, g.tread_m[landing]);
+  EXPECT_NEAR(landing_m, g.tread_m[landing], 0.015);
+}
+
+// A step a registered frame inserts right before a link the prior placed belongs to the part the
+// frame was registered on: beyond the link where its steps lie beyond it (it saw nothing before the
+// link, or the link would have been closed), else before it. A robot saw the next flight's first
+// step only after its others; left before the link, the next frame measured the link against that
+// step alone, closed it 1.5 cm "off", and the camera stayed 6.7 cm off along the first flight.
+TEST(TrackerPriorLinks, AStepInsertedBeforeALinkJoinsThePartItsFrameWasRegisteredOn) {
+  const auto make_map = [] {
+    StairMap map;
+    for (int k = 0; k < 6; ++k) {
+      MapStep s;
+      s.riser_x_m.add(0.25 * k + (k >= 3 ? 1.0 : 0.0), 1);  // a landing after the third step
+      s.tread_z_m.add(0.17 * (k + 1), 1);
+      s.confirmations = 5;
+      map.steps.push_back(s);
+    }
+    map.steps[3].prior_link_m = 0.08;  // the second flight, placed by the prior
+    // The last merge inserted the second flight's first step, on the landing before it.
+    MapStep first;
+    first.riser_x_m.add(1.5, 1);
+    first.tread_z_m.add(0.17 * 3.5, 1);
+    first.confirmations = 1;
+    first.last_merge = map.merges = 7;
+    map.steps.insert(map.steps.begin() + 3, first);
+    return map;
+  };
+  StairMap beyond = make_map();
+  extend_prior_links(beyond, 2.0);  // the frame's steps: the second flight's
+  EXPECT_DOUBLE_EQ(beyond.steps[3].prior_link_m, 0.08);
+  EXPECT_DOUBLE_EQ(beyond.steps[4].prior_link_m, 0.0);
+  EXPECT_DOUBLE_EQ(link_uncertainty_m(beyond, 0, 5), 0.08);
+  EXPECT_DOUBLE_EQ(link_uncertainty_m(beyond, 3, 5), 0.0);
+  StairMap before = make_map();
+  extend_prior_links(before, 0.4);  // the frame's steps: the first flight's
+  EXPECT_DOUBLE_EQ(before.steps[3].prior_link_m, 0.0);
+  EXPECT_DOUBLE_EQ(before.steps[4].prior_link_m, 0.08);
 }
 
 // The level the lowest seen step stands on joins registration only where it
