@@ -31,9 +31,16 @@ void extend_prior_links(StairMap& map, double registered_on_x_m) {
   }
 }
 
-double link_uncertainty_m(const StairMap& map, size_t a, size_t b) {
-  double sum = 0.0;
-  for (size_t k = std::min(a, b) + 1; k <= std::max(a, b) && k < map.steps.size(); ++k) sum += map.steps[k].prior_link_m;
+std::vector<double> prior_link_uncertainties_m(const StairMap& map, double registered_on_x_m) {
+  const auto open = [](const MapStep& s) { return s.prior_link_m > 0.0; };
+  if (std::none_of(map.steps.begin(), map.steps.end(), open)) return {};
+  size_t on = 0;
+  for (size_t k = 1; k < map.steps.size(); ++k)
+    if (std::abs(map.steps[k].x() - registered_on_x_m) < std::abs(map.steps[on].x() - registered_on_x_m)) on = k;
+  // Links summed from the first step; between two steps, the difference of their sums.
+  std::vector<double> sum(map.steps.size(), 0.0);
+  for (size_t k = 1; k < map.steps.size(); ++k) sum[k] = sum[k - 1] + map.steps[k].prior_link_m;
+  for (double& s : sum) s = std::abs(s - sum[on]);
   return sum;
 }
 

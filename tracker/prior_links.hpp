@@ -32,9 +32,10 @@ void open_prior_links(StairMap& map, double uncertainty_m);
 // frame measured the link against it alone, as closed.
 void extend_prior_links(StairMap& map, double registered_on_x_m);
 
-// How far off along the stair the motion prior may have placed step `b` relative to step `a`
-// (either order): the open links between them.
-double link_uncertainty_m(const StairMap& map, size_t a, size_t b);
+// Per step, how far off along the stair the motion prior may have placed it relative to the step
+// nearest `registered_on_x_m` (the steps the camera was registered on): the open links between
+// them. Empty while no link is open.
+std::vector<double> prior_link_uncertainties_m(const StairMap& map, double registered_on_x_m);
 
 // A link the observation sees both sides of, and the offset its steps measure along the stair: the
 // map's steps from `from` on (and its end wall beyond them) are to move by `shift_x_m`. Along the

@@ -517,6 +517,8 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
 // it wrong at every nosing).
 Registration Tracker::across_prior_links(const Observation& obs, const RegistrationInput& input,
                                          const Registration& reg) {
+  if (std::none_of(map_.steps.begin(), map_.steps.end(), [](const MapStep& s) { return s.prior_link_m > 0.0; }))
+    return reg;
   // Outward from the model's first part: each closed link anchors the part beyond it for the next.
   const std::vector<ObservedStep> observed = observed_steps(obs, reg.pose);
   std::optional<StairMap> before;
@@ -587,15 +589,9 @@ void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_val
   x_uncertainty_m += config_.registration.position_uncertainty_m;
   // Merged into the map: accepted (seed and accept keep each merged frame's time; times only grow).
   const bool merged = !accepted_.empty() && accepted_.back().utime == obs.source_utime;
-  // The steps the camera was last registered on: relative to them the prior's links are uncertain.
-  std::vector<double> link_m(map_.steps.size(), 0.0);
-  if (!map_.steps.empty()) {
-    size_t on = 0;
-    for (size_t k = 1; k < map_.steps.size(); ++k)
-      if (std::abs(map_.steps[k].x() - registered_on_x_m_) < std::abs(map_.steps[on].x() - registered_on_x_m_)) on = k;
-    for (size_t k = 0; k < map_.steps.size(); ++k) link_m[k] = link_uncertainty_m(map_, on, k);
-  }
-  fill_model(map_, merged, pose, camera_valid, x_uncertainty_m, link_m, obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
+  // Relative to the steps the camera was last registered on, the prior's open links are uncertain.
+  fill_model(map_, merged, pose, camera_valid, x_uncertainty_m, prior_link_uncertainties_m(map_, registered_on_x_m_),
+             obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
              flight_overhang_m(map_, config_.overhang),
              model_);
 }

@@ -674,8 +674,12 @@ TEST(TrackerPriorLinks, AStepInsertedBeforeALinkJoinsThePartItsFrameWasRegistere
   extend_prior_links(beyond, 2.0);  // the frame's steps: the second flight's
   EXPECT_DOUBLE_EQ(beyond.steps[3].prior_link_m, 0.08);
   EXPECT_DOUBLE_EQ(beyond.steps[4].prior_link_m, 0.0);
-  EXPECT_DOUBLE_EQ(link_uncertainty_m(beyond, 0, 5), 0.08);
-  EXPECT_DOUBLE_EQ(link_uncertainty_m(beyond, 3, 5), 0.0);
+  // Relative to the second flight's steps, the first flight's lie 8 cm uncertain, its own not.
+  const std::vector<double> link_m = prior_link_uncertainties_m(beyond, 2.0);
+  ASSERT_EQ(link_m.size(), beyond.steps.size());
+  EXPECT_DOUBLE_EQ(link_m[0], 0.08);
+  EXPECT_DOUBLE_EQ(link_m[3], 0.0);
+  EXPECT_DOUBLE_EQ(link_m[5], 0.0);
   StairMap before = make_map();
   extend_prior_links(before, 0.4);  // the frame's steps: the first flight's
   EXPECT_DOUBLE_EQ(before.steps[3].prior_link_m, 0.0);
