@@ -31,9 +31,12 @@ void extend_prior_links(StairMap& map, double registered_on_x_m) {
   }
 }
 
+bool any_open_prior_link(const StairMap& map) {
+  return std::any_of(map.steps.begin(), map.steps.end(), [](const MapStep& s) { return s.prior_link_m > 0.0; });
+}
+
 std::vector<double> prior_link_uncertainties_m(const StairMap& map, double registered_on_x_m) {
-  const auto open = [](const MapStep& s) { return s.prior_link_m > 0.0; };
-  if (std::none_of(map.steps.begin(), map.steps.end(), open)) return {};
+  if (!any_open_prior_link(map)) return {};
   size_t on = 0;
   for (size_t k = 1; k < map.steps.size(); ++k)
     if (std::abs(map.steps[k].x() - registered_on_x_m) < std::abs(map.steps[on].x() - registered_on_x_m)) on = k;

@@ -32,6 +32,9 @@ void open_prior_links(StairMap& map, double uncertainty_m);
 // frame measured the link against it alone, as closed.
 void extend_prior_links(StairMap& map, double registered_on_x_m);
 
+// Whether the model holds a link the prior placed that no frame has measured yet.
+bool any_open_prior_link(const StairMap& map);
+
 // Per step, how far off along the stair the motion prior may have placed it relative to the step
 // nearest `registered_on_x_m` (the steps the camera was registered on): the open links between
 // them. Empty while no link is open.

@@ -517,8 +517,7 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
 // it wrong at every nosing).
 Registration Tracker::across_prior_links(const Observation& obs, const RegistrationInput& input,
                                          const Registration& reg) {
-  if (std::none_of(map_.steps.begin(), map_.steps.end(), [](const MapStep& s) { return s.prior_link_m > 0.0; }))
-    return reg;
+  if (!any_open_prior_link(map_)) return reg;
   // Outward from the model's first part: each closed link anchors the part beyond it for the next.
   const std::vector<ObservedStep> observed = observed_steps(obs, reg.pose);
   std::optional<StairMap> before;
