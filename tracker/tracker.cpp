@@ -461,6 +461,17 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   const bool dead_reckoned =
       unplaced && (reg.within == 0 || foot_agreement_beyond_model(input, map_, by_prior, config_.registration,
                                                                   config_.stair) >= config_.motion.min_inlier_ratio);
+  // A model its seed alone supports has no velocity to place a frame by: where a step of such a frame
+  // lies among the seed's and matches none of them, the two frames disagree, and neither extends the
+  // other (a D435's seed 3 m away put its nosings a rise high and a tread far; the next frame's steps
+  // were added beside them and a wrong model grew on both: 5 false steps). The newer frame is no
+  // worse evidence: start again from it, as where a registration onto the seed is rejected.
+  if (dead_reckoned && !with_odometry && model_.observations_fused <= 1 &&
+      !agrees_where_it_overlaps(map_, observed_steps(obs, by_prior), config_.merge, config_.stair)) {
+    const std::string why = "its steps disagree with those of a model its seed alone supports";
+    if (reseed(obs, why)) return;
+    return place_by_prior(obs, prior, with_odometry, since_accept_s, why);
+  }
   if (dead_reckoned) {
     reg.pose = by_prior;
     reg.inlier_ratio = 1.0;
