@@ -255,11 +255,10 @@ TEST_P(SensorModel, EveryRealStepWithinHalfACentimetreAndNoFalseOne) {
 INSTANTIATE_TEST_SUITE_P(Sim, SensorModel,
                          ::testing::Values(
                              // A randomised walk (seed 195 --level, 08): a hand-held D435 at 1.47 m, nearly
-                             // level, walking to a descent 2.5 m away. Its first frame put the far nosings
-                             // a rise high and a tread far (the depth 3 m away); the next frame's steps,
-                             // matching none of them, were added beside them by a motion prior that had no
-                             // velocity yet, and a wrong model grew on both: 5 false model steps, the
-                             // tracked camera 8.9 cm off in height.
+                             // level, walking to a descent 2.5 m away. Its first frame measured the nosings
+                             // 3 m away 9 cm high; the next frame's steps, matching none of them, were added
+                             // beside them by a motion prior that had no velocity yet, and a wrong model
+                             // grew on both: 5 false model steps, the tracked camera 8.9 cm off in height.
                              Walk{"level_descent_far_seed_d435", "--preset straight_down --steps 11 --riser 0.136 "
                                   "--tread 0.330 --width 0.95 --nosing 0.000 --walls right --sensor d435 "
                                   "--carrier handheld --height 1.47 --pitch -14.5 --lateral 0.19 --yaw -14.7", 6079}),
