@@ -463,9 +463,9 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
                                                                   config_.stair) >= config_.motion.min_inlier_ratio);
   // A model its seed alone supports has no velocity to place a frame by: where a step of such a frame
   // lies among the seed's and matches none of them, the two frames disagree, and neither extends the
-  // other (a D435 seed 3 m away measured its nosings 9 cm high; the next frame's steps
-  // were added beside them and a wrong model grew on both: 5 false steps). The newer frame is no
-  // worse evidence: start again from it, as where a registration onto the seed is rejected.
+  // other (a D435 seed 3 m away measured its nosings 9 cm high; the next frame's steps were added
+  // beside them and a wrong model grew on both: 5 false steps). The newer frame is no worse
+  // evidence: start again from it, as where a registration onto the seed is rejected.
   if (dead_reckoned && !with_odometry && model_.observations_fused <= 1 &&
       !agrees_where_it_overlaps(map_, observed_steps(obs, by_prior), config_.merge, config_.stair)) {
     const std::string why = "its steps disagree with those of a model its seed alone supports";
