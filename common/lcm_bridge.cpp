@@ -538,6 +538,8 @@ stair_model_t to_lcm(const StairModel& model, int64_t utime, int64_t source_utim
   m.base_height_m = static_cast<float>(model.base_height_m);
   m.base_step_index = static_cast<int16_t>(model.base_step_index);
   m.base_beneath_known = model.base_beneath_known;
+  m.camera_height_known = model.camera_height_known;
+  m.base_height_known = model.base_height_known;
   m.camera_position_uncertainty_m = static_cast<float>(model.camera_position_uncertainty_m);
   return m;
 }
@@ -592,6 +594,8 @@ bool from_lcm(const stair_model_t& m, StairModel& model, std::string& error) {
   out.base_height_m = m.base_height_m;
   out.base_step_index = m.base_step_index;
   out.base_beneath_known = m.base_beneath_known;
+  out.camera_height_known = m.camera_height_known;
+  out.base_height_known = m.base_height_known;
   out.observations_fused = m.observations_fused;
   out.registration_rmse_m = m.registration_rmse_m;
   out.registration_inlier_ratio = m.registration_inlier_ratio;

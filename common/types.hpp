@@ -145,6 +145,9 @@ struct StairModel {
   // camera_height_m and camera_step_index hold: the camera is over a part of
   // the stair the model has seen (false beyond its far end).
   bool camera_beneath_known = false;
+  // camera_height_m holds (camera_beneath_known, and the height was measured, or carried along the
+  // stair's mean slope without crossing a flight's end, or its mount or odometry gives the carrier).
+  bool camera_height_known = false;
   // How far off camera_position_m may be along the stair (m): the registration's uncertainty, plus
   // what the motion prior may have drifted since; the base's position is as uncertain. -1 without
   // a camera.
@@ -157,6 +160,7 @@ struct StairModel {
   double base_height_m = 0.0;  // base origin above the surface beneath
   int base_step_index = -1;    // step beneath the base origin, -1 = floor before the first step
   bool base_beneath_known = false;  // as camera_beneath_known, for the base origin
+  bool base_height_known = false;   // as camera_height_known, for the base origin
   int observations_fused = 0;
   bool confirmed = false;  // enough observations agree on the same steps (flights are empty until then)
   double registration_rmse_m = -1.0;

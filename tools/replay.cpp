@@ -14,16 +14,15 @@ namespace stairs::eval {
 namespace {
 
 // A pose of the model as the Result JSON gives it: height and step only where the model knows
-// what is beneath.
-TrackedCamera tracked(bool valid, bool beneath_known, double height_m, int step_index, const Eigen::Vector3d& position_m,
-                      const Eigen::Quaterniond& orientation, double position_uncertainty_m) {
+// what is beneath, the height only where it also knows it (camera_height_known).
+TrackedCamera tracked(bool valid, bool beneath_known, bool height_known, double height_m, int step_index,
+                      const Eigen::Vector3d& position_m, const Eigen::Quaterniond& orientation,
+                      double position_uncertainty_m) {
   TrackedCamera c;
   c.valid = valid;
   if (position_uncertainty_m >= 0.0) c.position_uncertainty_m = position_uncertainty_m;
-  if (beneath_known) {
-    c.height_m = height_m;
-    c.step_index = step_index;
-  }
+  if (beneath_known) c.step_index = step_index;
+  if (beneath_known && height_known) c.height_m = height_m;
   c.position_m = position_m;
   c.orientation = orientation;
   return c;
@@ -32,13 +31,13 @@ TrackedCamera tracked(bool valid, bool beneath_known, double height_m, int step_
 }  // namespace
 
 TrackedCamera tracked_camera_of(const StairModel& m) {
-  return tracked(m.camera_valid, m.camera_beneath_known, m.camera_height_m, m.camera_step_index, m.camera_position_m,
-                 m.camera_orientation, m.camera_position_uncertainty_m);
+  return tracked(m.camera_valid, m.camera_beneath_known, m.camera_height_known, m.camera_height_m, m.camera_step_index,
+                 m.camera_position_m, m.camera_orientation, m.camera_position_uncertainty_m);
 }
 
 TrackedCamera tracked_base_of(const StairModel& m) {
-  return tracked(m.base_valid, m.base_beneath_known, m.base_height_m, m.base_step_index, m.base_position_m,
-                 m.base_orientation, m.base_valid ? m.camera_position_uncertainty_m : -1.0);
+  return tracked(m.base_valid, m.base_beneath_known, m.base_height_known, m.base_height_m, m.base_step_index,
+                 m.base_position_m, m.base_orientation, m.base_valid ? m.camera_position_uncertainty_m : -1.0);
 }
 
 RunResult replay(const std::string& input, const ReplayOptions& options, const FrameHook& hook) {

@@ -60,4 +60,17 @@ double mean_surface_z_m(const StairMap& map, double x_m, const StairPriorConfig&
   return sum / (2.0 * half);
 }
 
+bool reaches_a_flight_end(const StairMap& map, double a_m, double b_m, const StairPriorConfig& c) {
+  if (map.steps.empty()) return false;
+  const double half = 0.5 * typical_tread_m(map, c);
+  const double lo = std::min(a_m, b_m) - half, hi = std::max(a_m, b_m) + half;
+  auto near = [&](const MapStep& s) { return s.x() >= lo && s.x() <= hi; };
+  if (near(map.steps.front()) || near(map.steps.back())) return true;
+  for (size_t i = 0; i + 1 < map.steps.size(); ++i)
+    if (map.steps[i + 1].x() - map.steps[i].x() > c.landing_min_depth_m &&
+        (near(map.steps[i]) || near(map.steps[i + 1])))
+      return true;
+  return false;
+}
+
 }  // namespace stairs

@@ -81,6 +81,13 @@ double surface_z_m(const StairMap& map, double x_m, const StairPriorConfig& c);
 // slope on a flight, level on a landing or floor (what a walker's head follows).
 double mean_surface_z_m(const StairMap& map, double x_m, const StairPriorConfig& c);
 
+// Whether the way from a_m to b_m along the stair reaches where a flight meets a level (its first or
+// last nosing, or one beside a landing, within half a typical tread: where mean_surface_z_m bends).
+// A height carried along the mean slope holds on a flight and on a level for any carrier; across a
+// bend it changes by the slope times how far the carrier's feet lag its camera, which nothing measures
+// without a mount.
+bool reaches_a_flight_end(const StairMap& map, double a_m, double b_m, const StairPriorConfig& c);
+
 // Height of the floor below the first step.
 double floor_z_m(const StairMap& map, const StairPriorConfig& c);
 

@@ -56,6 +56,7 @@ void Tracker::reset() {
   accepted_.clear();  // odometry is kept: it is no state of the model
   placed_.reset();
   prior_refuted_ = false;
+  height_measured_x_m_ = std::numeric_limits<double>::quiet_NaN();
   have_utime_ = false;
   const StairModel fresh;
   model_ = fresh;
@@ -81,7 +82,7 @@ bool Tracker::seed(const Observation& obs) {
   model_.state = TrackingState::Ok;
   model_.registration_rmse_m = -1.0;
   model_.registration_inlier_ratio = 0.0;
-  publish(obs, pose, true);
+  publish(obs, pose, true, 0.0, true);
   return true;
 }
 
@@ -259,20 +260,26 @@ void Tracker::drop_if_lost_long(const Observation& obs, bool with_odometry) {
 // Without it the levels in view do: on the model's treads they fix the height wherever along them
 // the camera is (x stays the prior's). Frames without steps, placed by the prior, were 2.5 cm off in
 // height on average against 0.4 cm for registered ones (randomised walks, tenth session).
-Pose4 Tracker::with_observed_height(const Observation& obs, Pose4 pose) const {
+Pose4 Tracker::with_observed_height(const Observation& obs, Pose4 pose, bool* measured) const {
+  if (measured) *measured = false;
   if (!obs.camera.valid || map_.empty()) return pose;
   const double max_dz = config_.motion.observed_height_max_riser_fraction * typical_riser_m(map_, config_.stair);
   if (obs.camera.height_m) {
     const double z = surface_z_m(map_, pose.t_m.x(), config_.stair) + *obs.camera.height_m;
-    if (std::abs(z - pose.t_m.z()) < max_dz) pose.t_m.z() = z;
+    if (std::abs(z - pose.t_m.z()) < max_dz) {
+      pose.t_m.z() = z;
+      if (measured) *measured = true;
+    }
     return pose;
   }
   const RegistrationInput levels = level_points(obs, config_.registration);
   if (levels.tread_points.empty()) return pose;
   const Registration reg = register_to_map(levels, map_, pose, config_.registration, config_.stair);
   if (reg.within > 0 && reg.inlier_ratio >= config_.motion.min_inlier_ratio &&
-      std::abs(reg.pose.t_m.z() - pose.t_m.z()) < max_dz)
+      std::abs(reg.pose.t_m.z() - pose.t_m.z()) < max_dz) {
     pose.t_m.z() = reg.pose.t_m.z();
+    if (measured) *measured = true;
+  }
   return pose;
 }
 
@@ -281,7 +288,9 @@ Pose4 Tracker::with_observed_height(const Observation& obs, Pose4 pose) const {
 // with the model near the prior, they place the camera (x from them, z from the levels); the
 // frame is not merged (perception did not verify it) and does not feed the velocity (a robot's
 // jerky climb extrapolated from such poses went a step astray).
-std::optional<Registration> Tracker::on_planes_in_view(const Observation& obs, const Pose4& prior) const {
+std::optional<Registration> Tracker::on_planes_in_view(const Observation& obs, const Pose4& prior,
+                                                       bool& height_measured) const {
+  height_measured = false;
   const RegistrationInput in = planes_in_view(obs, config_.registration);
   if (in.riser_points.empty() && in.nosings.empty()) return std::nullopt;
   Pose4 start = prior;
@@ -296,7 +305,8 @@ std::optional<Registration> Tracker::on_planes_in_view(const Observation& obs, c
   // a steep flight slower than its prior, looking up at the top landing's end wall, rose 20 cm
   // above its camera's true height in 2 s.
   const int tread_inliers = reg.inliers - (reg.x_inliers - reg.nosing_inliers);
-  if (tread_inliers == 0 && reg.nosing_inliers == 0) {
+  height_measured = tread_inliers > 0 || reg.nosing_inliers > 0;
+  if (!height_measured) {
     const Eigen::Vector3d to_base = to_base_m(obs);
     const double from_x = (start.t_m + start.rotation() * to_base).x();
     const double to_x = (reg.pose.t_m + reg.pose.rotation() * to_base).x();
@@ -309,7 +319,8 @@ std::optional<Registration> Tracker::on_planes_in_view(const Observation& obs, c
 // The camera placed on a registration that is not merged (a frame perception found no staircase in,
 // or one the structure check turned down): the next prior starts from it. `uncertainty_m`: how far
 // off it may be beyond the registration's own uncertainty.
-void Tracker::place(const Observation& obs, const Registration& placed, const std::string& why, double uncertainty_m) {
+void Tracker::place(const Observation& obs, const Registration& placed, const std::string& why, double uncertainty_m,
+                    bool height_measured) {
   // The end wall alone places it only as well as the wall itself is known.
   const bool wall_only = placed.end_wall_inliers == placed.x_inliers;
   model_.status = why + (wall_only ? "; camera placed on the model's end wall in view"
@@ -319,7 +330,7 @@ void Tracker::place(const Observation& obs, const Registration& placed, const st
   x_measured_utime_ = obs.source_utime;
   x_measured_uncertainty_m_ = uncertainty_m + (wall_only ? map_.end_wall_uncertainty_m.value : 0.0);
   if (!wall_only) note_end_wall(obs, placed.pose, x_measured_uncertainty_m_);
-  publish(obs, placed.pose, true, x_measured_uncertainty_m_);
+  publish(obs, placed.pose, true, x_measured_uncertainty_m_, height_measured);
 }
 
 // Nothing registered: the model's risers, nosings or end wall in view place the
@@ -335,12 +346,15 @@ void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool wi
   const double since_measured_s = seconds(obs.source_utime - x_measured_utime_);
   const bool findable = obs.camera.valid && (with_odometry || since_measured_s <= config_.motion.predict_camera_s);
   const bool predicted = obs.camera.valid && (with_odometry || since_accept_s <= config_.motion.predict_camera_s);
+  // Odometry measures the carrier's motion, its height's too: a height it carries holds.
+  bool height_measured = false;
   if (findable)
-    if (const auto placed = on_planes_in_view(obs, prior)) return place(obs, *placed, why, 0.0);
+    if (const auto placed = on_planes_in_view(obs, prior, height_measured))
+      return place(obs, *placed, why, 0.0, height_measured || with_odometry);
   model_.status = !predicted      ? why
                   : with_odometry ? why + "; camera from odometry"
                                   : why + "; camera from the motion prior";
-  const Pose4 pose = with_observed_height(obs, prior);
+  const Pose4 pose = with_observed_height(obs, prior, &height_measured);
   // A refuted prior (a registration from it that its points disagreed with) is off by more than ICP
   // reaches, by how much unknown: published a tread uncertain (a robot's body rocking 20 cm back was
   // published 2-3 cm uncertain from a prior 20-26 cm off).
@@ -350,7 +364,7 @@ void Tracker::place_by_prior(const Observation& obs, const Pose4& prior, bool wi
   // into it) is as good as that pose, and no better: taken while that is within how far a
   // registration may correct the prior (a wall further off could not place the camera anyway).
   if (predicted && uncertainty_m <= config_.motion.max_translation_jump_m) note_end_wall(obs, pose, uncertainty_m);
-  publish(obs, pose, predicted, uncertainty_m);
+  publish(obs, pose, predicted, uncertainty_m, height_measured || with_odometry);
 }
 
 // `prior_uncertainty_m`: how far the prior may have carried the pose off since it was last measured
@@ -457,7 +471,8 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
   // for a frame that also shows the model.
   const bool unplaced = (with_odometry || since_accept_s <= config_.motion.max_prediction_s) &&
                         (reg.within == 0 ? !on_nosings && steps_apart : reg.x_inliers == 0);
-  const Pose4 by_prior = unplaced ? with_observed_height(obs, start_pose) : start_pose;
+  bool height_by_levels = false;  // the levels in view set the height of a frame placed by the prior
+  const Pose4 by_prior = unplaced ? with_observed_height(obs, start_pose, &height_by_levels) : start_pose;
   const bool dead_reckoned =
       unplaced && (reg.within == 0 || foot_agreement_beyond_model(input, map_, by_prior, config_.registration,
                                                                   config_.stair) >= config_.motion.min_inlier_ratio);
@@ -505,7 +520,7 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
     // agree with it within the prior's reach to be merged.
     if (!relocalising && !x_unknown && reg.x_inliers > 0 && reg.inlier_ratio >= config_.motion.min_inlier_ratio &&
         nearest_whole_step_shift(reg.pose, start_pose))
-      return place(obs, reg, why, jump);
+      return place(obs, reg, why, jump, true);
     place_by_prior(obs, prior, with_odometry, since_accept_s, why);
     return;
   }
@@ -516,7 +531,8 @@ void Tracker::track(const Observation& obs, bool with_odometry) {
                        : 0.0);
   model_.state = relocalising && !dead_reckoned ? TrackingState::Relocalised : TrackingState::Ok;
   model_.status = dead_reckoned ? "beyond the model: placed by the motion prior" : relocalising ? "relocalised" : "ok";
-  publish(obs, reg.pose, true, dead_reckoned ? prior_x_uncertainty_m(obs.source_utime, with_odometry) : 0.0);
+  publish(obs, reg.pose, true, dead_reckoned ? prior_x_uncertainty_m(obs.source_utime, with_odometry) : 0.0,
+          !dead_reckoned || height_by_levels || with_odometry);
 }
 
 // Where the registered frame sees steps on both sides of a link the motion prior placed, the part
@@ -595,8 +611,18 @@ void Tracker::accept(const Observation& obs, const Pose4& pose, bool x_measured,
 // Every placement starts from a registration, whose position along the stair is known to
 // registration.position_uncertainty_m at best: hand-held walks placed the camera 0.1 mm from the right
 // place and over the wrong step, a millimetre from a nosing (17 of 78 wrong steps over 99 walks).
-void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid, double x_uncertainty_m) {
+void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_valid, double x_uncertainty_m,
+                      bool height_measured) {
   x_uncertainty_m += config_.registration.position_uncertainty_m;
+  // A height carried without a mount holds along a flight and along a level, not across where they
+  // meet: there the carrier's feet, somewhere behind its camera, climb or stop while the camera's x
+  // says otherwise (hand-held climbers reaching a top landing on the end wall alone were published
+  // 2-8 cm off its height, a robot's mast camera 10 cm). With a mount the base is what is carried.
+  const double base_x = (pose.t_m + pose.rotation() * to_base_m(obs)).x();
+  if (height_measured) height_measured_x_m_ = base_x;
+  const bool height_known = height_measured || config_.mount.configured() ||
+                            (std::isfinite(height_measured_x_m_) &&
+                             !reaches_a_flight_end(map_, height_measured_x_m_, base_x, config_.stair));
   // Merged into the map: accepted (seed and accept keep each merged frame's time; times only grow).
   const bool merged = !accepted_.empty() && accepted_.back().utime == obs.source_utime;
   // Relative to the steps the camera was last registered on, the prior's open links are uncertain.
@@ -604,6 +630,8 @@ void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_val
              obs.camera.gravity_rotation, config_.confirmation, config_.stair, config_.mount,
              flight_overhang_m(map_, config_.overhang),
              model_);
+  model_.camera_height_known = model_.camera_beneath_known && height_known;
+  model_.base_height_known = model_.base_beneath_known && height_known;
 }
 
 // The level the lowest seen step stands on is a floor if it is deeper than any

@@ -14,6 +14,7 @@
 #include "tracker/stair_map.hpp"
 
 #include <deque>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -44,7 +45,10 @@ class Tracker {
   std::string restart_if_time_went_back(int64_t utime);
   void drop_if_lost_long(const Observation& obs, bool with_odometry);
   void track(const Observation& obs, bool with_odometry);
-  void place(const Observation& obs, const Registration& placed, const std::string& why, double uncertainty_m);
+  // height_measured: the pose's height was measured (levels or nosings agreed), not carried along the
+  // stair's mean slope by faces alone.
+  void place(const Observation& obs, const Registration& placed, const std::string& why, double uncertainty_m,
+             bool height_measured);
   bool nearest_whole_step_shift(const Pose4& pose, const Pose4& prior) const;
   void place_by_prior(const Observation& obs, const Pose4& prior, bool with_odometry, double since_accept_s,
                       const std::string& why);
@@ -66,8 +70,11 @@ class Tracker {
                                             const Registration& reg) const;
   // The end wall in view (end_wall.hpp), seen from `pose`, which the prior may have carried this far off.
   void note_end_wall(const Observation& obs, const Pose4& pose, double prior_uncertainty_m);
-  Pose4 with_observed_height(const Observation& obs, Pose4 pose) const;
-  std::optional<Registration> on_planes_in_view(const Observation& obs, const Pose4& prior) const;
+  // `measured` (when given): whether the levels in view or perception's height set the height.
+  Pose4 with_observed_height(const Observation& obs, Pose4 pose, bool* measured = nullptr) const;
+  // `height_measured`: whether levels or nosings in view fixed the height (else faces alone carried it).
+  std::optional<Registration> on_planes_in_view(const Observation& obs, const Pose4& prior,
+                                                bool& height_measured) const;
   Pose4 predict(int64_t utime, const Eigen::Vector3d& to_base_m) const;
   double observed_yaw(double axis_rad, double prior_yaw_rad) const;
   std::optional<double> yaw_off_within_jump(double axis_rad, double around_rad) const;
@@ -78,7 +85,10 @@ class Tracker {
   // x_uncertainty_m: how far off the position along the stair may be beyond what a registration on the
   // model's steps leaves (0: so registered; else the motion prior's drift since, or the end wall's own
   // uncertainty where it alone placed the camera); registration.position_uncertainty_m is added to it.
-  void publish(const Observation& obs, const Pose4& pose, bool camera_valid, double x_uncertainty_m = 0.0);
+  // height_measured: this frame measured the pose's height (registered on the model's levels or
+  // nosings, or perception's height over the surface beneath); else it was carried (height_measured_x_m_).
+  void publish(const Observation& obs, const Pose4& pose, bool camera_valid, double x_uncertainty_m,
+               bool height_measured);
   double prior_x_uncertainty_m(int64_t utime, bool with_odometry) const;
   bool prior_tells_steps_apart(int64_t utime, bool with_odometry) const;
   void note_speed_change();
@@ -115,6 +125,9 @@ class Tracker {
   // Along the stair in W, the middle of the steps the last registered frame saw: the part of the model
   // (between links the prior placed) the camera's position is measured against.
   double registered_on_x_m_ = 0.0;
+  // Along the stair in W, where the carrier's base (the camera without a mount) was when the height
+  // was last measured: a height carried from there across a flight's end is unknown (stair_map.hpp).
+  double height_measured_x_m_ = std::numeric_limits<double>::quiet_NaN();
   int64_t last_utime_ = 0;
   bool have_utime_ = false;
   int64_t dropped_out_of_order_ = 0, rejected_registrations_ = 0, resets_ = 0, time_jumps_ = 0;

@@ -145,6 +145,9 @@ TEST(Messages, ModelRoundTrip) {
   model.base_height_m = 0.02;
   model.base_step_index = 2;
   model.base_beneath_known = true;
+  model.camera_beneath_known = true;
+  model.camera_height_known = false;  // the step beneath holds, the height does not
+  model.base_height_known = true;
   model.camera_position_uncertainty_m = 0.035;
   model.planes = {sample_plane(PlaneKind::Landing, 3)};
   const stair_model_t m = round_trip(to_lcm(model, 5, 4, 3));
@@ -161,6 +164,9 @@ TEST(Messages, ModelRoundTrip) {
   EXPECT_EQ(back.observations_fused, 57);
   EXPECT_NEAR(back.camera_position_m.z(), 1.2, 1e-12);
   EXPECT_TRUE(back.base_valid && back.base_beneath_known);
+  EXPECT_TRUE(back.camera_beneath_known);
+  EXPECT_FALSE(back.camera_height_known);
+  EXPECT_TRUE(back.base_height_known);
   EXPECT_EQ(back.base_step_index, 2);
   EXPECT_NEAR(back.base_height_m, 0.02, 1e-6);
   EXPECT_NEAR(back.base_position_m.x(), -0.9, 1e-12);
