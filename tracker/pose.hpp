@@ -19,6 +19,9 @@ struct Pose4 {
     T.translation() = t_m;
     return T;
   }
+  // The point `offset_m` from the pose's origin, the offset in its frame (the carrier's base from
+  // the camera).
+  Eigen::Vector3d point_at(const Eigen::Vector3d& offset_m) const { return t_m + rotation() * offset_m; }
 };
 
 // Angle wrapped to (-pi, pi].

@@ -308,8 +308,8 @@ std::optional<Registration> Tracker::on_planes_in_view(const Observation& obs, c
   height_measured = tread_inliers > 0 || reg.nosing_inliers > 0;
   if (!height_measured) {
     const Eigen::Vector3d to_base = to_base_m(obs);
-    const double from_x = (start.t_m + start.rotation() * to_base).x();
-    const double to_x = (reg.pose.t_m + reg.pose.rotation() * to_base).x();
+    const double from_x = start.point_at(to_base).x();
+    const double to_x = reg.pose.point_at(to_base).x();
     reg.pose.t_m.z() =
         start.t_m.z() + mean_surface_z_m(map_, to_x, config_.stair) - mean_surface_z_m(map_, from_x, config_.stair);
   }
@@ -618,7 +618,7 @@ void Tracker::publish(const Observation& obs, const Pose4& pose, bool camera_val
   // meet: there the carrier's feet, somewhere behind its camera, climb or stop while the camera's x
   // says otherwise (hand-held climbers reaching a top landing on the end wall alone were published
   // 2-8 cm off its height, a robot's mast camera 10 cm). With a mount the base is what is carried.
-  const double base_x = (pose.t_m + pose.rotation() * to_base_m(obs)).x();
+  const double base_x = pose.point_at(to_base_m(obs)).x();
   if (height_measured) height_measured_x_m_ = base_x;
   const bool height_known = height_measured || config_.mount.configured() ||
                             (std::isfinite(height_measured_x_m_) &&

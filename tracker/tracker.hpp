@@ -105,7 +105,7 @@ class Tracker {
     Pose4 pose;
     Eigen::Vector3d to_base_m;
     // The point the motion prior keeps at constant velocity: the base with a mount, else the camera.
-    Eigen::Vector3d base_m() const { return pose.t_m + pose.rotation() * to_base_m; }
+    Eigen::Vector3d base_m() const { return pose.point_at(to_base_m); }
   };
   std::deque<Accepted> accepted_;
   // A frame placed on the planes in view since the last accepted one: where the camera was last
