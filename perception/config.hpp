@@ -252,6 +252,11 @@ struct GravityConfig {
                                          // worse) and is correlated there (quantised disparity), which a far
                                          // sliver's small residual hides; whether a frame measures its pitch
                                          // also counts it as a resolution that no average over cells beats
+  float riser_lean_deg = 3.0f;  // deg; a face no taller than a rise may lean this far from plumb unseen by its
+                                // fit's noise (an inclined riser, DIN 18065's undercut; its nosing's front; a
+                                // time-of-flight foot): it argues for an up's pitch no better than this
+  float riser_max_height_m = 0.3f;  // m; faces taller than this are walls, plumb by construction (DIN's
+                                    // highest rise with its tolerance, as plane_geometry.axis_riser_max_height_m)
   float refine_prior_fraction = 1e-5f;  // directions the treads constrain less than this fraction of their
                                         // total information keep the consensus up (a lone thin strip)
 
@@ -269,6 +274,8 @@ struct GravityConfig {
     v("refine_first_deg", refine_first_deg, 0.01f, 45.0f);
     v("fit_rms_floor_m", fit_rms_floor_m, 1e-6f, 0.1f);
     v("fit_rms_floor_per_m2", fit_rms_floor_per_m2, 0.0f, 0.1f);
+    v("riser_lean_deg", riser_lean_deg, 0.01f, 45.0f);
+    v("riser_max_height_m", riser_max_height_m, 0.0f, 10.0f);
     v("refine_prior_fraction", refine_prior_fraction, 0.0f, 1.0f);
   }
 };

@@ -149,15 +149,9 @@ struct Classified {
   std::optional<float> tall_yaw_rad;
 };
 
-// A segment's size along the unit direction `d` (gravity frame): its cells' spread along d, as the
-// size of an even strip with that variance (12 sigma^2 = size^2).
+// A segment's size along the unit direction `d` (gravity frame; R: optical to gravity frame).
 float size_along_m(const Segment& s, const Eigen::Matrix3f& R, const Eigen::Vector3f& d) {
-  float var = 0.0f;
-  for (int k = 0; k < 2; ++k) {
-    const float a = (R * s.axis[k]).dot(d);
-    var += s.spread_m2[k] * a * a;
-  }
-  return std::sqrt(12.0f * var);
+  return s.size_along_m(R.transpose() * d);
 }
 
 // How wide a vertical segment is: its size along its horizontal in-plane direction.

@@ -3,6 +3,7 @@
 
 #include "perception/normals.hpp"
 
+#include <cmath>
 #include <vector>
 
 namespace stairs {
@@ -41,6 +42,17 @@ struct Segment {
   PlaneSums sums;  // of all its cells
   bool bent = false;  // bent by a concave corner's band, with too little outside it to stand for its
                       // plane (concave_corners.hpp); gravity does not use it
+
+  // Its size along the unit direction d (optical frame): its cells' spread along d, as the size of an
+  // even strip with that variance (12 sigma^2 = size^2).
+  float size_along_m(const Eigen::Vector3f& d) const {
+    float var = 0.0f;
+    for (int k = 0; k < 2; ++k) {
+      const float a = axis[k].dot(d);
+      var += spread_m2[k] * a * a;
+    }
+    return std::sqrt(12.0f * var);
+  }
 };
 
 // Least-squares plane of the segment's cells (sums, centroid, normal, rms, axes).
