@@ -550,7 +550,7 @@ Segment face_at(double pitch_deg, const Eigen::Vector3d& world_normal, size_t ce
 // risers' fits lean 2.4-5.2 deg (a nosing's front in each, multipath at each foot), each knowing its
 // normal to about a degree by its noise, and its four treads agree with each other to 0.3 deg. The walls
 // and the risers, two vertical families, set up 4-6 deg off in pitch; every rise came out 3 cm short
-// (39 frames with false steps). A riser may lean by design: the treads set the pitch.
+// (39 false steps in 8 frames). A riser may lean by design: the treads set the pitch.
 TEST(PerceptionGravity, RisersThatLeanDoNotSetThePitchAgainstTheTreads) {
   const double pitch = 2.0;
   const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY();
