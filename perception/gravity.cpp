@@ -55,8 +55,8 @@ double information_along(const Segment& s, int k, const GravityConfig& cfg, bool
 // How well a plane's fit knows its normal in its worst direction (across its
 // narrower in-plane axis). A thin strip or a riser cut at a nosing knows its
 // normal poorly however many cells it has.
-double information(const Segment& s, const GravityConfig& cfg) {
-  return std::min(information_along(s, 0, cfg), information_along(s, 1, cfg));
+double information(const Segment& s, const GravityConfig& cfg, bool resolved = false) {
+  return std::min(information_along(s, 0, cfg, resolved), information_along(s, 1, cfg, resolved));
 }
 
 // The information (1 / variance of a tilt) that knows up to within consensus_deg.
@@ -68,8 +68,8 @@ double consensus_information(const GravityConfig& cfg) {
 // A plane whose fit knows its normal only to worse than consensus_deg cannot
 // refine an up to within it: a far tread seen as a sliver, its tilt across it
 // set by depth noise.
-bool knows_normal_within_consensus(const Segment& s, const GravityConfig& cfg) {
-  return information(s, cfg) >= consensus_information(cfg);
+bool knows_normal_within_consensus(const Segment& s, const GravityConfig& cfg, bool resolved = false) {
+  return information(s, cfg, resolved) >= consensus_information(cfg);
 }
 
 // What the horizontal planes within tol_deg of `up` know of its tilt: up is
@@ -223,20 +223,45 @@ std::optional<Eigen::Vector3f> estimate_up(const std::vector<Segment>& segments,
   auto vertical = [&](const Segment& s) {
     return std::abs(s.normal.dot(*prior)) < sin_prior && knows_normal_within_consensus(s, cfg);
   };
-  const auto v1 = best_family(segments, cos_par, vertical);
-  std::optional<Eigen::Vector3f> vertical_up;  // perpendicular to the vertical families, else nothing
-  bool two_families = false;                    // a second one: up is their cross product
-  if (v1) {
-    const float cos_distinct = std::cos(cfg.second_family_min_angle_deg * deg);
+  // The largest vertical family and the largest one distinct from it: up perpendicular to both (or,
+  // with one, to it, nearest the prior), if near the prior.
+  const float cos_distinct = std::cos(cfg.second_family_min_angle_deg * deg);
+  struct Vertical {
+    std::optional<Family> v1;
+    std::optional<Eigen::Vector3f> up;  // perpendicular to the vertical families, else nothing
+    bool two_families = false;          // a second one: up is their cross product
+  };
+  auto vertical_families = [&](auto keep) {
+    Vertical v;
+    v.v1 = best_family(segments, cos_par, keep);
+    if (!v.v1) return v;
     const auto v2 = best_family(segments, cos_par, [&](const Segment& s) {
-      return vertical(s) && std::abs(s.normal.dot(v1->normal)) < cos_distinct;
+      return keep(s) && std::abs(s.normal.dot(v.v1->normal)) < cos_distinct;
     });
-    two_families = v2.has_value();
-    Eigen::Vector3f u = v2 ? v1->normal.cross(v2->normal) : *prior - prior->dot(v1->normal) * v1->normal;
+    v.two_families = v2.has_value();
+    Eigen::Vector3f u = v2 ? v.v1->normal.cross(v2->normal) : *prior - prior->dot(v.v1->normal) * v.v1->normal;
     if (u.dot(*prior) < 0) u = -u;
     u.normalize();
-    if (u.dot(*prior) >= cos_prior) vertical_up = u;
-  }
+    if (u.dot(*prior) >= cos_prior) v.up = u;
+    return v;
+  };
+  Vertical chosen = vertical_families(vertical);
+  // Walls are plumb by construction, faces no taller than a rise need not be (riser_lean_deg): where
+  // two families of walls fix up and agree with more than the largest families do, they stand for it.
+  // A Kinect v2 robot on a flight, its risers 0.6-1.5 m off leaning 4-11 deg (multipath at their feet,
+  // the nosing's front in their fit) and outnumbering a side wall and the landing's end wall, had its
+  // pitch set 5-7 deg off by risers x side wall, and every rise came out 3 cm short. A wall must know
+  // its normal as well as the depth's resolution at its range lets it (a D435's faces 4.9 m off, 2 cm
+  // rms, leaned 8 deg).
+  const Vertical walls = vertical_families([&](const Segment& s) {
+    return vertical(s) && s.size_along_m(*prior) > cfg.riser_max_height_m && knows_normal_within_consensus(s, cfg, true);
+  });
+  if (walls.two_families && walls.up &&
+      (!chosen.up || agreement(segments, *walls.up, cfg) > agreement(segments, *chosen.up, cfg)))
+    chosen = walls;
+  const auto& v1 = chosen.v1;
+  const std::optional<Eigen::Vector3f>& vertical_up = chosen.up;
+  const bool two_families = chosen.two_families;
   // The treads propose where they are large enough beside the walls and risers, unless those
   // agree with an up of their own by more than the treads' (a floor strip inside a time-of-flight
   // camera's multipath band, bent as a whole 8 degrees, set the pitch against every riser in view).

@@ -580,5 +580,40 @@ TEST(PerceptionGravity, RisersThatLeanDoNotSetThePitchAgainstTheTreads) {
   EXPECT_LT(leaning->dot(true_up(pitch)), std::cos(2.0 * M_PI / 180));
 }
 
+// A Kinect v2 robot on a flight, looking 4 deg up (seed 241 stairs 01): no tread in view, a side wall
+// and the top landing's end wall, both plumb, and four risers 0.6-1.4 m off leaning 4.7-11.2 deg
+// (multipath at their feet, the nosing's front in their fit) with three times the walls' cells. The
+// risers x the side wall set the pitch 5-7 deg off and every rise came out 3 cm short (18 false steps
+// in 7 frames); the two walls know it.
+TEST(PerceptionGravity, TwoWallsSetThePitchAgainstRisersThatLean) {
+  const double pitch = 3.9;
+  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY();
+  const Segment side_wall = face_at(pitch, -Y, 3179, 0.25, 0.5, 0.0012f, 2.5f);
+  const Segment end_wall = face_at(pitch, -X, 3723, 0.3, 0.6, 0.0017f, 3.4f);
+  std::vector<Segment> risers;
+  const double lean_deg[] = {8.5, 4.7, 5.2, 11.2};
+  const size_t cells[] = {5857, 3755, 1981, 951};
+  const float rms[] = {0.0020f, 0.0030f, 0.0044f, 0.0054f}, depth[] = {0.59f, 0.88f, 1.15f, 1.43f};
+  for (int i = 0; i < 4; ++i)
+    risers.push_back(face_at(pitch, Eigen::AngleAxisd(-lean_deg[i] * M_PI / 180, Y) * -X, cells[i], 0.045, 0.3,
+                             rms[i], depth[i]));
+  std::vector<Segment> segs = risers;
+  segs.push_back(side_wall);
+  segs.push_back(end_wall);
+  const auto up = estimate_up(segs, GravityConfig{}, true_up(pitch));
+  ASSERT_TRUE(up.has_value());
+  EXPECT_GT(up->dot(true_up(pitch)), std::cos(0.3 * M_PI / 180));
+  // Faces 4.9 m off that a stereo camera fits to 2 cm rms, leaning 8 deg, are no walls that know up:
+  // plumb risers and the side wall set it.
+  std::vector<Segment> far = {side_wall};
+  for (int i = 0; i < 4; ++i)
+    far.push_back(face_at(pitch, -X, cells[i], 0.045, 0.3, rms[i], depth[i]));
+  far.push_back(face_at(pitch, Eigen::AngleAxisd(-8.0 * M_PI / 180, Y) * Eigen::AngleAxisd(40 * M_PI / 180, Eigen::Vector3d::UnitZ()) * -X,
+                        243, 0.19, 0.33, 0.0208f, 4.9f));
+  const auto plumb = estimate_up(far, GravityConfig{}, true_up(pitch));
+  ASSERT_TRUE(plumb.has_value());
+  EXPECT_GT(plumb->dot(true_up(pitch)), std::cos(0.3 * M_PI / 180));
+}
+
 }  // namespace
 }  // namespace stairs
