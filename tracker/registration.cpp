@@ -93,10 +93,10 @@ struct Extent {
                             p.tread_z[k + 1] + margin);
   }
   // A plane point: below the top and before the far end, and not before and below the first step;
-  // and beside no step: the profile is the flight's, and what lies beside it is none of its business
-  // (the floor beside an open-sided flight runs on under its treads: seen as a robot's body pitched up
-  // at the flight's foot, 170 of 300 tread points disagreed, every registration was rejected for 1.7 s
-  // and the model was lost).
+  // and within the steps' lateral extent: the profile is the flight's, and what lies beside the flight
+  // is none of its business (the floor beside an open-sided flight runs on under its treads: seen as a
+  // robot's body pitched up at the flight's foot, 170 of 300 tread points disagreed, every registration
+  // was rejected for 2.8 s and the model was lost).
   bool holds_plane_point(const Eigen::Vector3d& q) const {
     return q.x() <= x_hi && q.z() <= z_hi && (q.x() >= x_lo || q.z() >= z_lo) && q.y() >= y_lo && q.y() <= y_hi;
   }

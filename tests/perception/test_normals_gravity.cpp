@@ -546,6 +546,18 @@ Segment face_at(double pitch_deg, const Eigen::Vector3d& world_normal, size_t ce
   return s;
 }
 
+// Four risers facing the camera, riser i leaning lean_deg[i] back from plumb, its fit as face_at's.
+std::vector<Segment> leaning_risers(double pitch_deg, const double (&lean_deg)[4], const size_t (&cells)[4],
+                                    double vertical_m, double horizontal_m, const float (&rms_m)[4],
+                                    const float (&depth_m)[4]) {
+  std::vector<Segment> risers;
+  for (int i = 0; i < 4; ++i)
+    risers.push_back(face_at(pitch_deg,
+                             Eigen::AngleAxisd(-lean_deg[i] * M_PI / 180, Eigen::Vector3d::UnitY()) * -Eigen::Vector3d::UnitX(),
+                             cells[i], vertical_m, horizontal_m, rms_m[i], depth_m[i]));
+  return risers;
+}
+
 // A level Kinect v2 1.4 m up, 2.8 m before a flight between two walls (seed 225 level 04): its four
 // risers' fits lean 2.4-5.2 deg (a nosing's front in each, multipath at each foot), each knowing its
 // normal to about a degree by its noise, and its four treads agree with each other to 0.3 deg. The walls
@@ -553,15 +565,14 @@ Segment face_at(double pitch_deg, const Eigen::Vector3d& world_normal, size_t ce
 // (39 false steps in 8 frames). A riser may lean by design: the treads set the pitch.
 TEST(PerceptionGravity, RisersThatLeanDoNotSetThePitchAgainstTheTreads) {
   const double pitch = 2.0;
-  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d Y = Eigen::Vector3d::UnitY();
   std::vector<Segment> segs = {face_at(pitch, -Y, 7368, 0.4, 0.6, 0.0009f, 2.4f),
                                face_at(pitch, Y, 7159, 0.4, 0.6, 0.0010f, 2.2f)};
   const double lean_deg[] = {2.4, 3.4, 4.2, 5.2};
   const size_t riser_cells[] = {341, 388, 505, 666};
   const float riser_rms[] = {0.0066f, 0.0051f, 0.0049f, 0.0044f}, riser_depth[] = {3.8f, 3.5f, 3.2f, 2.8f};
-  for (int i = 0; i < 4; ++i)
-    segs.push_back(face_at(pitch, Eigen::AngleAxisd(-lean_deg[i] * M_PI / 180, Y) * -X, riser_cells[i], 0.057, 0.5,
-                           riser_rms[i], riser_depth[i]));
+  for (const Segment& r : leaning_risers(pitch, lean_deg, riser_cells, 0.057, 0.5, riser_rms, riser_depth))
+    segs.push_back(r);
   // Seen edge-on: 2.5-6 cm (standard deviation) along the view.
   const size_t tread_cells[] = {103, 168, 303, 254};
   const float tread_rms[] = {0.0019f, 0.0013f, 0.0007f, 0.0008f}, tread_depth[] = {3.6f, 3.3f, 3.0f, 2.7f};
@@ -590,14 +601,10 @@ TEST(PerceptionGravity, TwoWallsSetThePitchAgainstRisersThatLean) {
   const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY();
   const Segment side_wall = face_at(pitch, -Y, 3179, 0.25, 0.5, 0.0012f, 2.5f);
   const Segment end_wall = face_at(pitch, -X, 3723, 0.3, 0.6, 0.0017f, 3.4f);
-  std::vector<Segment> risers;
-  const double lean_deg[] = {8.5, 4.7, 5.2, 11.2};
+  const double lean_deg[] = {8.5, 4.7, 5.2, 11.2}, plumb_deg[] = {0, 0, 0, 0};
   const size_t cells[] = {5857, 3755, 1981, 951};
   const float rms[] = {0.0020f, 0.0030f, 0.0044f, 0.0054f}, depth[] = {0.59f, 0.88f, 1.15f, 1.43f};
-  for (int i = 0; i < 4; ++i)
-    risers.push_back(face_at(pitch, Eigen::AngleAxisd(-lean_deg[i] * M_PI / 180, Y) * -X, cells[i], 0.045, 0.3,
-                             rms[i], depth[i]));
-  std::vector<Segment> segs = risers;
+  std::vector<Segment> segs = leaning_risers(pitch, lean_deg, cells, 0.045, 0.3, rms, depth);
   segs.push_back(side_wall);
   segs.push_back(end_wall);
   const auto up = estimate_up(segs, GravityConfig{}, true_up(pitch));
@@ -605,9 +612,8 @@ TEST(PerceptionGravity, TwoWallsSetThePitchAgainstRisersThatLean) {
   EXPECT_GT(up->dot(true_up(pitch)), std::cos(0.3 * M_PI / 180));
   // Faces 4.9 m off that a stereo camera fits to 2 cm rms, leaning 8 deg, are no walls that know up:
   // plumb risers and the side wall set it.
-  std::vector<Segment> far = {side_wall};
-  for (int i = 0; i < 4; ++i)
-    far.push_back(face_at(pitch, -X, cells[i], 0.045, 0.3, rms[i], depth[i]));
+  std::vector<Segment> far = leaning_risers(pitch, plumb_deg, cells, 0.045, 0.3, rms, depth);
+  far.push_back(side_wall);
   far.push_back(face_at(pitch, Eigen::AngleAxisd(-8.0 * M_PI / 180, Y) * Eigen::AngleAxisd(40 * M_PI / 180, Eigen::Vector3d::UnitZ()) * -X,
                         243, 0.19, 0.33, 0.0208f, 4.9f));
   const auto plumb = estimate_up(far, GravityConfig{}, true_up(pitch));

@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -248,20 +250,28 @@ TEST(TrackerMerge, ASecondNosingAtAStepsXIsNoNewStep) {
 // disagrees with nothing: a Kinect v2 ascent under nosing overhangs, the next riser the only one
 // segmented in view, had every registration rejected, and a whole-step search then fitted that
 // riser onto the top step (a step lost from the model).
-TEST(TrackerRegistration, TheNextStepsRiserIsNoDisagreement) {
-  StairMap map;
-  const Pose4 pose;
-  const TrackerConfig c;
+// Four steps (rise 0.17 m, run 0.28 m), each tread seen to where the next riser stands, `half_width_m`
+// either side of the flight's middle where given; `map` holds them merged three times.
+std::vector<ObservedStep> four_steps_merged(StairMap& map, const TrackerConfig& c, std::optional<double> half_width_m = {}) {
   std::vector<ObservedStep> steps;
   for (int k = 0; k < 4; ++k) {
     ObservedStep o;
     o.nosing_m = {0.28 * k, 0.0, 0.17 * (k + 1)};
     o.riser_x_m = 0.28 * k;
     o.tread_z_m = 0.17 * (k + 1);
-    o.tread_far_x_m = 0.28 * (k + 1);  // each tread seen to where the next riser stands
+    o.tread_far_x_m = 0.28 * (k + 1);
+    if (half_width_m) o.y_min_m = -*half_width_m, o.y_max_m = *half_width_m;
     steps.push_back(o);
   }
-  for (int n = 0; n < 3; ++n) merge(map, steps, pose, c.merge, c.stair, c.registration.icp_min_distance_m);
+  for (int n = 0; n < 3; ++n) merge(map, steps, Pose4{}, c.merge, c.stair, c.registration.icp_min_distance_m);
+  return steps;
+}
+
+TEST(TrackerRegistration, TheNextStepsRiserIsNoDisagreement) {
+  StairMap map;
+  const Pose4 pose;
+  const TrackerConfig c;
+  const std::vector<ObservedStep> steps = four_steps_merged(map, c);
   ASSERT_EQ(map.steps.size(), 4u);
   RegistrationInput in;
   for (const ObservedStep& o : steps) in.nosings.push_back(o.nosing_m);
@@ -278,24 +288,13 @@ TEST(TrackerRegistration, TheNextStepsRiserIsNoDisagreement) {
 // The model is the flight's profile along the stair; the floor beside an open-sided flight runs on
 // under its treads at the floor's height, and is no disagreement: a D435 robot whose body pitched up
 // at a flight's foot saw more of that floor, 170 of its 300 tread points disagreed, every
-// registration was rejected for 1.7 s and the model was lost (then re-built two steps short). The
+// registration was rejected for 2.8 s and the model was lost (then put two steps back). The
 // same level within the flight's width, under its treads, disagrees.
 TEST(TrackerRegistration, TheFloorBesideAnOpenSidedFlightIsNoDisagreement) {
   StairMap map;
   const Pose4 pose;
   const TrackerConfig c;
-  std::vector<ObservedStep> steps;
-  for (int k = 0; k < 4; ++k) {
-    ObservedStep o;
-    o.nosing_m = {0.28 * k, 0.0, 0.17 * (k + 1)};
-    o.riser_x_m = 0.28 * k;
-    o.tread_z_m = 0.17 * (k + 1);
-    o.tread_far_x_m = 0.28 * (k + 1);
-    o.y_min_m = -0.45;  // a flight 0.9 m wide
-    o.y_max_m = 0.45;
-    steps.push_back(o);
-  }
-  for (int n = 0; n < 3; ++n) merge(map, steps, pose, c.merge, c.stair, c.registration.icp_min_distance_m);
+  const std::vector<ObservedStep> steps = four_steps_merged(map, c, 0.45);  // a flight 0.9 m wide
   ASSERT_EQ(map.steps.size(), 4u);
   RegistrationInput in;
   for (const ObservedStep& o : steps) in.nosings.push_back(o.nosing_m);
