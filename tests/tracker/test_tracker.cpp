@@ -13,11 +13,10 @@
 
 #include <gtest/gtest.h>
 
-#include <optional>
-
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 
 using namespace stairs;
 using namespace stairs::synthetic;
@@ -245,11 +244,6 @@ TEST(TrackerMerge, ASecondNosingAtAStepsXIsNoNewStep) {
   EXPECT_EQ(merge(map, {at(0.84, 0.68)}, pose, c.merge, c.stair, c.registration.icp_min_distance_m), 1);
 }
 
-// The next step's riser stands on the model's top level with its foot inside the model's extent
-// (the top tread is taken to run a tread on, and the next riser stands just there). It agrees and
-// disagrees with nothing: a Kinect v2 ascent under nosing overhangs, the next riser the only one
-// segmented in view, had every registration rejected, and a whole-step search then fitted that
-// riser onto the top step (a step lost from the model).
 // Four steps (rise 0.17 m, run 0.28 m), each tread seen to where the next riser stands, `half_width_m`
 // either side of the flight's middle where given; `map` holds them merged three times.
 std::vector<ObservedStep> four_steps_merged(StairMap& map, const TrackerConfig& c, std::optional<double> half_width_m = {}) {
@@ -267,6 +261,11 @@ std::vector<ObservedStep> four_steps_merged(StairMap& map, const TrackerConfig& 
   return steps;
 }
 
+// The next step's riser stands on the model's top level with its foot inside the model's extent
+// (the top tread is taken to run a tread on, and the next riser stands just there). It agrees and
+// disagrees with nothing: a Kinect v2 ascent under nosing overhangs, the next riser the only one
+// segmented in view, had every registration rejected, and a whole-step search then fitted that
+// riser onto the top step (a step lost from the model).
 TEST(TrackerRegistration, TheNextStepsRiserIsNoDisagreement) {
   StairMap map;
   const Pose4 pose;
