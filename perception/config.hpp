@@ -424,6 +424,8 @@ struct PlaneGeometryConfig {
                                                // between two pieces at one height keeps them apart (nothing is
                                                // seen through a tread; a cell or two at their edges is noise)
   float extent_percentile = 0.02f;   // fraction trimmed at each end of an extent
+  float tread_strip_m = 0.1f;        // m; a tread's extent along the stair is also taken in lateral strips this
+                                     // wide (several under the narrowest step): where it ends under a step
   float view_edge_band_m = 0.02f;    // m; cells this close to a plane's top (bottom) height are its top
                                      // (bottom) row: in the grid's margin, the plane may go on out of view
   float riser_face_band_fraction = 0.25f;  // of a riser's seen height, left out at its top and at its foot
@@ -447,6 +449,7 @@ struct PlaneGeometryConfig {
     v("merge_bin_m", merge_bin_m, 0.001f, 1.0f);
     v("tread_split_min_seen_fraction", tread_split_min_seen_fraction, 0.0f, 1.0f);
     v("extent_percentile", extent_percentile, 0.0f, 0.49f);
+    v("tread_strip_m", tread_strip_m, 0.01f, 1.0f);
     v("view_edge_band_m", view_edge_band_m, 0.0f, 1.0f);
     v("riser_face_band_fraction", riser_face_band_fraction, 0.0f, 0.49f);
     v("occluder_min_gap_m", occluder_min_gap_m, 0.0f, 10.0f);

@@ -54,7 +54,7 @@ std::optional<double> successor(const Level& a, const Level& b, Direction dir, s
     // jump: a tread above the camera or edge-on) has an unseen tread reaching
     // to the next riser, a tread's depth away. Only a seen tread can be a
     // landing, so the gap is a plausible tread.
-    const float gap = b.s_min - a.s_max;
+    const float gap = b.s_min - end_under(a, b, c.max_level_gap_m);
     if (a.s_max <= a.s_min ? !din_tread_ok(gap, c) : std::abs(gap) > c.max_level_gap_m) return std::nullopt;
     if (a_nosing) {
       const float tread = b.s_min - *a_nosing;
@@ -65,7 +65,7 @@ std::optional<double> successor(const Level& a, const Level& b, Direction dir, s
     }
   } else {
     // Going down the lower tread shows beyond the upper nosing (its near part is hidden).
-    if (b.s_max <= a.s_max || b.s_min < a.s_max - c.max_level_gap_m) return std::nullopt;
+    if (b.s_max <= a.s_max || start_beyond(b, a, c.max_level_gap_m) < a.s_max - c.max_level_gap_m) return std::nullopt;
     const float tread = b.s_max - a.s_max;
     // A level seen only as its nosing's jump (a far tread, a strip too thin for
     // a plane) is a tread between two nosings: only a seen tread can be a landing.
@@ -76,6 +76,31 @@ std::optional<double> successor(const Level& a, const Level& b, Direction dir, s
     }
   }
   return dev;
+}
+
+// Whether a tread plane other than `a` and `b` lies between them, in height and along the stair
+// (between where a ends and b starts), across b's width: b rises (drops) over a step, not from a. A
+// flight has no level between two consecutive treads; the step between is one the grammar did not
+// take (a real Kinect v2's 8 cm first riser, under DIN's lowest rise, had the floor chained to the
+// second tread, a 17.8 cm "rise" over a 30 cm "gap" the first tread filled). A plane, not a level
+// of an edge's or a riser's top: a nosing's depth jump is seen a few centimetres off its tread's
+// height, and going down such a level "between" cut descents.
+bool level_between(const std::vector<Level>& levels, size_t a_index, size_t b_index, Direction dir,
+                   const StairConfig& c) {
+  const Level& a = levels[a_index];
+  const Level& b = levels[b_index];
+  const bool up = dir == Direction::Up;
+  const float z_lo = std::min(a.z, b.z) + c.same_level_m, z_hi = std::max(a.z, b.z) - c.same_level_m;
+  const float s_lo = up ? end_under(a, b, c.max_level_gap_m) : a.s_max;
+  const float s_hi = up ? b.s_min : start_beyond(b, a, c.max_level_gap_m);
+  for (size_t k = 0; k < levels.size(); ++k) {
+    const Level& m = levels[k];
+    if (k == a_index || k == b_index || m.plane < 0 || m.z <= z_lo || m.z >= z_hi || !laterally_overlapping(m, b, c))
+      continue;
+    const float mid = 0.5f * (m.s_min + m.s_max);
+    if (mid > s_lo && mid < s_hi) return true;
+  }
+  return false;
 }
 
 // The tread that `b` adds after `a` is a landing (its depth is known).
@@ -90,6 +115,7 @@ StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction 
   chain.levels.push_back(levels[start]);
   std::vector<uint8_t> used(levels.size(), 0);
   used[start] = 1;
+  size_t last = start;
   bool last_landing = false;
   for (;;) {
     const Level& a = chain.levels.back();
@@ -102,7 +128,7 @@ StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction 
     for (size_t j = 0; j < levels.size(); ++j) {
       if (used[j]) continue;
       const auto dev = successor(a, levels[j], dir, a_nosing, c);
-      if (!dev) continue;
+      if (!dev || level_between(levels, last, j, dir, c)) continue;
       const float rise = std::abs(levels[j].z - a.z);
       // The successor is a step a tread's depth on where there is one (a level seen farther, the
       // top of a head or a box beyond the flight a few centimetres below a nosing, is no landing
@@ -121,6 +147,7 @@ StairChain grow_chain(const std::vector<Level>& levels, size_t start, Direction 
     if (last_landing) ++chain.landings;
     last_landing = is_landing(a, levels[best], dir, a_nosing, c);
     used[best] = 1;
+    last = static_cast<size_t>(best);
     chain.levels.push_back(levels[best]);
     chain.deviation += best_dev;
   }

@@ -326,10 +326,33 @@ struct ExtentScratch {
   RankScratch ranks;
 };
 
+// A tread's strips of about strip_m across [t_min, t_max], from all its cells.
+Strips strips_of(const std::vector<float>& ss, const std::vector<float>& ts, float t_min, float t_max, float strip_m) {
+  Strips out;
+  const float width = t_max - t_min;
+  if (!(width > 0) || ss.empty()) return out;
+  const int n = std::min(Strips::kMax, std::max(1, static_cast<int>(std::ceil(width / strip_m))));
+  out.t0 = t_min;
+  out.width = width / static_cast<float>(n);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  out.s_min.assign(static_cast<size_t>(n), nan);
+  out.s_max.assign(static_cast<size_t>(n), nan);
+  const float inv = 1.0f / out.width;
+  for (size_t k = 0; k < ss.size(); ++k) {
+    const float f = (ts[k] - t_min) * inv;
+    if (!(f >= 0) || f >= static_cast<float>(n)) continue;
+    const size_t i = static_cast<size_t>(f);
+    if (!(ss[k] >= out.s_min[i])) out.s_min[i] = ss[k];  // NaN compares false: the first cell sets it
+    if (!(ss[k] <= out.s_max[i])) out.s_max[i] = ss[k];
+  }
+  return out;
+}
+
 // Extents along the axis (s), across it (t) and up (z), trimmed percentiles;
 // whether the plane's top / bottom rows are inside the grid's valid margin.
 PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Eigen::Matrix3f& R, float yaw_rad,
-                    bool face_band, const PlaneGeometryConfig& cfg, Eigen::Vector3f& centroid, ExtentScratch& x) {
+                    PlaneKind kind, const PlaneGeometryConfig& cfg, Eigen::Vector3f& centroid, ExtentScratch& x) {
+  const bool face_band = kind == PlaneKind::Riser;
   const float cy = std::cos(yaw_rad), sy = std::sin(yaw_rad);
   x.ss.clear();
   x.ts.clear();
@@ -351,6 +374,7 @@ PlaneExtent extents(const NormalGrid& g, const std::vector<int>& cells, const Ei
   std::tie(e.s_min, e.s_max) = trimmed_range(x.ss, lo[0], hi[0], cfg.extent_percentile, x.ranks);
   std::tie(e.t_min, e.t_max) = trimmed_range(x.ts, lo[1], hi[1], cfg.extent_percentile, x.ranks);
   std::tie(e.z_min, e.z_max) = trimmed_range(x.zs, lo[2], hi[2], cfg.extent_percentile, x.ranks);
+  if (kind == PlaneKind::Tread) e.strips = strips_of(x.ss, x.ts, e.t_min, e.t_max, cfg.tread_strip_m);
   // Normals exist from margin_cells inside the grid: a plane whose top
   // reaches the upper margin may continue above the view.
   // Rows by index bounds: row > margin is index >= (margin + 1) * width (no division per cell).
@@ -408,7 +432,7 @@ PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segment
     p.kind = grp.kind;
     p.normal = grp.normal.normalized();
     p.support = static_cast<int>(cells.size()) * g.cell_px * g.cell_px;
-    const PlaneExtent e = extents(g, cells, R, out.yaw_rad, p.kind == PlaneKind::Riser, cfg, p.centroid, scratch);
+    PlaneExtent e = extents(g, cells, R, out.yaw_rad, p.kind, cfg, p.centroid, scratch);
     if (p.kind == PlaneKind::Tread) {
       p.corners[Plane::kTopLeft] = out.to_camera(e.s_max, e.t_max, e.z_mean);
       p.corners[Plane::kTopRight] = out.to_camera(e.s_max, e.t_min, e.z_mean);
@@ -426,9 +450,24 @@ PlaneSet plane_geometry(const NormalGrid& g, const std::vector<Segment>& segment
     const int cap = p.kind == PlaneKind::Other ? caps.max_other_points : caps.max_sample_points;
     for (int c : grid_subsample(g, cells, cap)) p.points.push_back(R * g.points[c]);
     out.planes.push_back(std::move(p));
-    out.extents.push_back(e);
+    out.extents.push_back(std::move(e));
   }
   return out;
+}
+
+std::optional<std::pair<float, float>> Strips::across(float t_lo, float t_hi) const {
+  std::array<float, kMax> lo{}, hi{};
+  size_t n = 0;
+  for (size_t k = 0; k < s_min.size(); ++k) {
+    const float mid = t0 + (static_cast<float>(k) + 0.5f) * width;
+    if (mid < t_lo || mid > t_hi || std::isnan(s_min[k])) continue;
+    lo[n] = s_min[k];
+    hi[n++] = s_max[k];
+  }
+  if (n == 0) return std::nullopt;
+  std::nth_element(lo.begin(), lo.begin() + n / 2, lo.begin() + n);
+  std::nth_element(hi.begin(), hi.begin() + n / 2, hi.begin() + n);
+  return std::make_pair(lo[n / 2], hi[n / 2]);
 }
 
 }  // namespace stairs

@@ -6,9 +6,22 @@
 
 #include <cmath>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace stairs {
+
+// A tread's extent along the stair in lateral strips: strip k covers t from t0 + k * width; NaN where
+// none of its cells lies. A level runs on beside a step wherever the flight is narrower than what was
+// seen of it (the floor beside an open-sided flight, or of a room wider than the flight, reaches past
+// the first riser); under the step it ends at the riser's foot.
+struct Strips {
+  static constexpr int kMax = 64;  // strips per plane (a wider plane gets wider strips)
+  float t0 = 0, width = 0;
+  std::vector<float> s_min{}, s_max{};
+  // The median of the extents of the strips whose middle lies in [t_lo, t_hi]; none if no such strip.
+  std::optional<std::pair<float, float>> across(float t_lo, float t_hi) const;
+};
 
 // Extent of a plane in the stair-aligned frame (s along the stair's
 // ascending/descending axis, t lateral/left, z up), trimmed percentiles, m.
@@ -19,6 +32,7 @@ struct PlaneExtent {
   bool top_in_view = true;     // false when the plane's highest cells lie on the grid's top border or, for a
                                // riser, a nearer surface hides them (occluder_min_gap_m)
   bool bottom_in_view = true;  // false when its lowest cells lie on the grid's bottom border
+  Strips strips{};             // a tread's (empty for other planes)
 };
 
 struct PlaneSet {

@@ -51,6 +51,18 @@ bool inside_a_riser_face(const PlaneSet& ps, size_t i, const StairConfig& cfg) {
 
 }  // namespace
 
+float end_under(const Level& a, const Level& b, float run_on_m) {
+  if (a.s_max <= b.s_min + run_on_m) return a.s_max;
+  const auto under = a.strips.across(b.t_min, b.t_max);
+  return under ? under->second : a.s_max;
+}
+
+float start_beyond(const Level& b, const Level& a, float run_on_m) {
+  if (b.s_min >= a.s_max - run_on_m) return b.s_min;
+  const auto beyond = b.strips.across(a.t_min, a.t_max);
+  return beyond ? beyond->first : b.s_min;
+}
+
 std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>& edges, const StairConfig& cfg) {
   std::vector<Level> levels;
   for (size_t i = 0; i < ps.planes.size(); ++i) {
@@ -58,6 +70,7 @@ std::vector<Level> tread_levels(const PlaneSet& ps, const std::vector<JumpEdge>&
     if (ps.planes[i].kind != PlaneKind::Tread || e.t_max - e.t_min < cfg.min_step_width_m) continue;
     if (inside_a_riser_face(ps, i, cfg)) continue;
     levels.push_back({static_cast<int>(i), e.z_mean, e.s_min, e.s_max, e.t_min, e.t_max});
+    levels.back().strips = e.strips;
   }
   // Treads seen edge-on (a camera below or level with them) are too thin to
   // segment, but the riser below each one is in view: its top edge is the
@@ -165,9 +178,13 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
     // Going up, the riser's face lies by where the level below stops and this
     // tread starts: neither level reaches into the step (within riser_contact_m
     // of noise), and each loses its cells at the corner (to noise, or to a riser
-    // fitted tilted that takes them). The face is searched for there too.
-    const bool band = up && below.plane >= 0 && !below.riser_top && !tread.riser_top &&
-                      below.s_max < tread.s_min + cfg.riser_contact_m;
+    // fitted tilted that takes them). The face is searched for there too. Both
+    // are seen planes: a level seen only as its front edge (a nosing's depth
+    // jump) starts at the nosing itself, and its "band" put the face half a band
+    // off (that offset, carried to an unseen face, made a Kinect v2's first tread 18 cm for 24).
+    const float below_end = end_under(below, tread, cfg.max_level_gap_m);
+    const bool band = up && below.plane >= 0 && tread.plane >= 0 && !below.riser_top && !tread.riser_top &&
+                      below_end < tread.s_min + cfg.riser_contact_m;
     // The riser whose face lies at the nosing line, spanning the rise; of
     // several, the one reaching lowest: a riser stands on the level below, and
     // under a nosing overhang the slab's front face, a few cm tall at the
@@ -175,13 +192,13 @@ std::vector<Step> steps_from_chain(const PlaneSet& ps, const StairChain& chain, 
     // that step's nosing at the slab and the next one's at a riser's face: a
     // hand-held Kinect v1 ascent's treads 0.20-0.25 m for 0.222).
     s.riser_plane = find_riser(
-        ps, std::min(at - cfg.riser_at_nosing_m, band ? below.s_max : at), at + cfg.riser_at_nosing_m,
+        ps, std::min(at - cfg.riser_at_nosing_m, band ? below_end : at), at + cfg.riser_at_nosing_m,
         cfg.riser_min_width_m, [&](const PlaneExtent& e) { return e.z_max >= below.z && e.z_min <= tread.z; },
         [](const PlaneExtent& a, const PlaneExtent& b) { return a.z_min < b.z_min; });
     // The riser's face is the better estimate: the tread's edge cells are lost at the corner.
     if (s.riser_plane >= 0) at = ps.extents[s.riser_plane].s_mean;
     nosing_s.push_back(at);
-    band_mid.push_back(band ? std::optional<float>(0.5f * (below.s_max + tread.s_min)) : std::nullopt);
+    band_mid.push_back(band ? std::optional<float>(0.5f * (below_end + tread.s_min)) : std::nullopt);
     s.tread_depth_m = tread.s_max - tread.s_min;
     s.width_m = tread.t_max - tread.t_min;
     steps.push_back(s);

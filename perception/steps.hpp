@@ -18,7 +18,16 @@ struct Level {
   // How far its plane's heights (trimmed percentiles) reach below and above z;
   // 0 for an edge's level.
   float reach_below_m = 0, reach_above_m = 0;
+  Strips strips{};           // its plane's (empty for a riser's top or an edge's level)
 };
+
+// Where level `a` ends along the stair under level `b`, the next one up: its whole extent's end,
+// unless that runs on past b's start by more than `run_on_m`; then its end across b's width.
+float end_under(const Level& a, const Level& b, float run_on_m);
+// Where level `b` starts along the stair beyond level `a`, the one above it going down: its whole
+// extent's start, unless that reaches back before a's end by more than `run_on_m`; then its start
+// across a's width (the floor beside an open-sided flight reaches back under its top).
+float start_beyond(const Level& b, const Level& a, float run_on_m);
 
 // Levels of the tread planes, of the tops of risers and of the depth-jump
 // edges whose tread is not segmented, lowest first; planes narrower than

@@ -23,9 +23,11 @@ inline Eigen::Matrix3d optical_to_world(double pitch_deg, double roll_deg) {
   return pitch * base * roll;
 }
 
-// Floor at z = -height_m; `steps` ascending steps starting at x = first_riser_m.
+// Floor at z = -height_m; `steps` ascending steps starting at x = first_riser_m, `half_width_m` to
+// either side of the camera (the floor beside a narrower flight runs on; its outer sides face away).
 inline DepthImage render_stairs(int w, int h, double pitch_deg, double roll_deg, double height_m, int steps,
-                                double first_riser_m = 1.5, double riser_m = 0.17, double tread_m = 0.28) {
+                                double first_riser_m = 1.5, double riser_m = 0.17, double tread_m = 0.28,
+                                double half_width_m = std::numeric_limits<double>::infinity()) {
   DepthImage img;
   img.K = {w, h, 525.0 * w / 640, 525.0 * w / 640, (w - 1) / 2.0, (h - 1) / 2.0};
   img.depth.assign(static_cast<size_t>(w) * h, 0);
@@ -46,12 +48,13 @@ inline DepthImage render_stairs(int w, int h, double pitch_deg, double roll_deg,
         if (d.z() < 0) {
           const double t = z / d.z();
           const double x = t * d.x();
-          if (x >= x0 && x < x1) hit(t);
+          const bool beside = std::abs(t * d.y()) > half_width_m;
+          if (beside ? k == 0 : x >= x0 && x < x1) hit(t);
         }
         if (k < steps && d.x() > 0) {
           const double t = x1 / d.x();
           const double zz = t * d.z();
-          if (zz >= z && zz < z + riser_m) hit(t);
+          if (zz >= z && zz < z + riser_m && std::abs(t * d.y()) <= half_width_m) hit(t);
         }
       }
       if (std::isfinite(best) && best < 10) img.depth[static_cast<size_t>(v) * w + u] = static_cast<uint16_t>(best * 1000);
