@@ -74,8 +74,8 @@ TEST(PerceptionGrammar, LevelsThatRiseThroughTheRiseAreNoSteps) {
 
 // A step lower than DIN's lowest rise (a real Kinect v2 flight's 8 cm first riser) is no step the
 // grammar takes; the floor, the level after it and the one after that then look like a flight whose
-// first "step" rises 18 cm over a 28 cm gap, the low step's tread filling that gap. A level seen
-// between two, in height and along the stair, says they are no consecutive steps.
+// first "step" rises 18 cm over a 28 cm gap, the low step's tread filling that gap. A tread plane
+// seen between two, in height and along the stair, says they are no consecutive steps.
 TEST(PerceptionGrammar, NoStepOverALevelBetween) {
   std::vector<Level> levels = {level(-1.0f, 0.0f, 0.5f), level(-0.92f, 0.52f, 0.76f), level(-0.82f, 0.78f, 1.06f),
                                level(-0.64f, 1.08f, 1.36f)};
@@ -414,7 +414,7 @@ TEST(PerceptionSteps, AnUnseenFaceStandsWhereTheSeenOnesStandFromTheirBands) {
 // A level seen only as its nosing's depth jump (the top tread, at a grazing angle) starts at the
 // nosing itself: it lost no cells at the corner, and its "band" with the tread below put that face
 // half a band off its middle. Carried to a face no riser shows (the second), that offset made a
-// Kinect v2's treads 18 and 29 cm for 24. The faces the seen treads' bands show are at the middle.
+// Kinect v2's treads 18 and 27 cm for 24. The faces the seen treads' bands show are at the middle.
 TEST(PerceptionSteps, ANosingsJumpIsNoTreadThatLostItsFrontToACorner) {
   constexpr float kRise = 0.15f, kTread = 0.24f, kFloor = -1.2f, kFirstFace = 3.0f, kLost = 0.04f;
   const StairConfig cfg;
