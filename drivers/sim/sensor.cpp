@@ -117,6 +117,16 @@ void apply_axial_noise(const SensorModel& m, bool noise, bool quantise, Rng& rng
   }
 }
 
+void apply_depth_warp(const SensorModel& m, const Intrinsics& K, std::vector<float>& depth_m) {
+  const double half_diagonal2 = 0.25 * (static_cast<double>(K.width) * K.width + static_cast<double>(K.height) * K.height);
+  for (int v = 0; v < K.height; ++v)
+    for (int u = 0; u < K.width; ++u) {
+      float& d = depth_m[static_cast<size_t>(v) * K.width + u];
+      const double rho2 = ((u - K.cx) * (u - K.cx) + (v - K.cy) * (v - K.cy)) / half_diagonal2;
+      d = static_cast<float>(d * (1.0 + m.depth_warp * (rho2 - 0.5)));
+    }
+}
+
 void apply_holes(const SensorModel& m, double radius_scale, Rng& rng, int W, int H, std::vector<float>& depth_m) {
   const int count = static_cast<int>(std::lround(m.holes_per_megapixel * W * H / 1e6));
   for (int h = 0; h < count; ++h) {

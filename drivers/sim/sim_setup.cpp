@@ -67,6 +67,10 @@ void add_setup_options(Options& o) {
       .add("resolution", "WxH", "depth resolution; the sensor's native intrinsics scaled (default: native)")
       .add("perfect", "", "noiseless depth: no sensor effects except the 0.5-4.5 m range");
   for (const auto& s : kSensorSwitches) o.add(s[0], "", std::string("switch off the ") + s[1]);
+  o.add("depth-warp", "FRACTION",
+        "smooth depth warp as real cameras show: depth x (1 + FRACTION (rho^2 - 1/2)), rho = radius over the "
+        "half-diagonal (e.g. 0.01; 0 = off)",
+        "0");
   o.add("seed", "N", "random seed: the same seed gives the same bytes (and a furniture preset's sizes)", "1");
 }
 
@@ -122,6 +126,8 @@ SimSetup setup_from_options(const Options& o) {
   s.sensor.lateral_noise = s.sensor.lateral_noise && !o.flag("no-lateral-noise");
   s.sensor.grazing_dropout = s.sensor.grazing_dropout && !o.flag("no-grazing");
   s.sensor.holes = s.sensor.holes && !o.flag("no-holes");
+  s.sensor.depth_warp = o.get_double("depth-warp");
+  if (!(std::abs(s.sensor.depth_warp) <= 0.1)) throw std::runtime_error("--depth-warp must be within -0.1..0.1");
 
   TrajectoryConfig& t = s.trajectory;
   try {
@@ -169,6 +175,7 @@ nlohmann::json setup_to_json(const SimSetup& s) {
             {"grazing_dropout", m.grazing_dropout},
             {"multipath", m.multipath},
             {"holes", m.holes},
+            {"depth_warp", m.depth_warp},
             {"range_m", {m.min_range_m, m.max_range_m}}}},
           {"trajectory",
            {{"carrier", carrier_name(t.carrier)},

@@ -121,3 +121,24 @@ TEST(SimSensor, DarkTreadsDropTheirShareOfPixelsOnEverySensor) {
     EXPECT_NEAR(static_cast<double>(zeros) / n, m.dark_dropout, 0.02) << name;
   }
 }
+
+// The depth warp: off by default (every other test's bytes as they were), and when asked for, a flat
+// wall seen face-on reads depth x (1 + warp (rho^2 - 1/2)): deeper in the corners, shallower at the
+// centre, by the fraction given.
+TEST(SimSensor, DepthWarpBendsAFlatWallByTheFractionGiven) {
+  const Scene s = wall_scene();
+  const Eigen::Isometry3d T = camera_pose({2.0, 0.0, 1.3}, 0.0, 0.0, 0.0);  // the wall 2 m ahead
+  SensorModel m;
+  m.shadow = m.axial_noise = m.quantisation = m.lateral_noise = m.grazing_dropout = m.holes = false;
+  EXPECT_EQ(m.depth_warp, 0.0);
+  Renderer flat(s, kinect(), m, 3);
+  m.depth_warp = 0.02;
+  Renderer warped(s, kinect(), m, 3);
+  const DepthImage a = flat.render(T, 0, 0), b = warped.render(T, 0, 0);
+  const auto at = [](const DepthImage& img, int u, int v) { return img.depth[static_cast<size_t>(v) * 640 + u]; };
+  EXPECT_EQ(at(a, 320, 240), 2000);
+  EXPECT_EQ(at(a, 5, 5), 2000);
+  EXPECT_NEAR(at(b, 320, 240), 2000 * (1 - 0.01), 1);  // rho = 0
+  const double rho2 = ((5 - 319.5) * (5 - 319.5) + (5 - 239.5) * (5 - 239.5)) / (0.25 * (640.0 * 640 + 480.0 * 480));
+  EXPECT_NEAR(at(b, 5, 5), 2000 * (1 + 0.02 * (rho2 - 0.5)), 1);
+}
