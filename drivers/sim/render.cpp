@@ -69,7 +69,7 @@ DepthImage Renderer::render(const Eigen::Isometry3d& T, int64_t utime, int32_t s
   // without a return is no depth edge (before them, a D435's edge holes spread the dropout to the
   // neighbours: 74 % of a dark tread's pixels read nothing for 50 %).
   if (!m.perfect && scene_.dark_treads) apply_dark_dropout(m, dark_, camera_zb_, rng, depth_m_);
-  if (!m.perfect && m.depth_warp != 0.0) apply_depth_warp(m, K_, depth_m_);
+  if (on(m.depth_warp != 0.0)) apply_depth_warp(m, K_, depth_m_);
   if (on(m.holes)) apply_holes(m, res_scale, rng, W, H, depth_m_);
 
   DepthImage img;
