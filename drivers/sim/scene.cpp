@@ -120,6 +120,13 @@ void add_presets_first(std::map<std::string, Preset>& m) {
           s.dark_treads = true;
           return s;
         }}},
+      {"open_risers",
+       {"10 steps 0.18/0.26 m with open risers: 4 cm tread slabs, the floor under the flight between them, 3 m landing",
+        [] {
+          Scene s = stair("open_risers", {uniform_flight(10, 0.18, 0.26, 3.0)});
+          s.open_risers = true;
+          return s;
+        }}},
       {"irregular_step",
        {"10 steps 0.17/0.28 m but the 5th rises 0.21 m (its tread 0.28 m), 3 m landing",
         [] {
@@ -469,6 +476,10 @@ Scene scene_from_json(const json& j, const std::string& what) {
     if (!j["dark_treads"].is_boolean()) fail(what, "'dark_treads' is not true/false");
     s.dark_treads = j["dark_treads"].get<bool>();
   }
+  if (j.contains("open_risers")) {
+    if (!j["open_risers"].is_boolean()) fail(what, "'open_risers' is not true/false");
+    s.open_risers = j["open_risers"].get<bool>();
+  }
   if (s.nosing_m < 0.0 || s.nosing_m > 0.1) fail(what, "'nosing_m' must be within 0..0.1");
   if (j.contains("back_wall")) {
     if (!j["back_wall"].is_boolean()) fail(what, "'back_wall' is not true/false");
@@ -506,6 +517,7 @@ json scene_to_json(const Scene& s) {
           {"ramp_landing_m", s.ramp_landing_m},
           {"walk_end_m", s.walk_end_m},
           {"dark_treads", s.dark_treads},
+          {"open_risers", s.open_risers},
           {"boxes", boxes},
           {"cylinders", cyls}};
 }

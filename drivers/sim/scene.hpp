@@ -63,6 +63,8 @@ struct Scene {
   double ramp_height_m = 0.3;
   double ramp_landing_m = 2.0;
   bool dark_treads = false;        // treads absorb the IR: SensorModel::dark_dropout of their pixels read nothing
+  bool open_risers = false;        // each step but a landing is a tread slab (nosing_thickness_m) on nothing: no
+                                   // riser below it, the floor under the flight seen between the slabs
   double walk_end_m = 0.0;         // FlatRoom: > 0 = the walk along x stops here (furniture beyond)
   std::vector<Box> boxes;          // clutter
   std::vector<Cylinder> cylinders; // clutter, handrails

@@ -108,6 +108,13 @@ INSTANTIATE_TEST_SUITE_P(Sim, SensorAccuracy,
                              // Walking down turned 12 deg from the flight, 0.2 m off its centre line: the
                              // risers are hidden, so the nosings' lines give the stair axis (without them
                              // treads came out 0.9-1.1 cm short and Kinect v1 kept a false model step).
+                             // Open risers going down: each step a 4 cm tread slab on nothing. From above
+                             // the gaps beneath the nosings are out of sight, as risers are.
+                             Walk{"open_risers_down_kinect1", "--preset open_risers --direction down --sensor kinect1"},
+                             Walk{"open_risers_down_kinect2", "--preset open_risers --direction down --sensor kinect2"},
+                             Walk{"open_risers_down_d435", "--preset open_risers --direction down --sensor d435"},
+                             Walk{"open_risers_down_robot_d435",
+                                  "--preset open_risers --direction down --carrier robot --sensor d435"},
                              Walk{"yawed_down_kinect1",
                                   "--preset straight_down --yaw 12 --lateral -0.2 --sensor kinect1"},
                              Walk{"yawed_down_kinect2",
@@ -236,6 +243,33 @@ INSTANTIATE_TEST_SUITE_P(Sim, SensorHonesty,
                              Walk{"two_flights_lost_down_kinect1", "--preset two_flights --direction down "
                                   "--sensor kinect1 --carrier handheld --height 1.18 --pitch -22.3 --roll 4.5 "
                                   "--lateral 0.07 --yaw -18.0", 18942}),
+                         kName);
+
+// Open risers going up: under each nosing the camera sees through to the floor beneath the flight,
+// the evidence verification takes for a chair seat or a table (no riser under the nosing, issue 14),
+// so the flight is no staircase in most frames and the model stays empty or partial. What is given
+// must hold no false step: unknown, not wrong.
+class OpenRisersUp : public ::testing::TestWithParam<Walk> {};
+
+TEST_P(OpenRisersUp, NoFalseStepInAnyFrameOrInTheModel) {
+  const Walk& w = GetParam();
+  const std::optional<eval::Score> scored = score_walk(w);
+  ASSERT_TRUE(scored) << w.name;
+  const eval::Score& s = *scored;
+  std::printf("%s: model %d/%d, false %d/%d, detection nosing in view %.1f %%\n", w.name, s.model_steps_detected,
+              s.model_steps_real, s.frame_false_steps, s.model_false_steps,
+              100 * s.frame_step_detection_nosing_in_view.value_or(0));
+  ASSERT_GT(s.model_steps_real, 0) << w.name << ": no stair in the walk, no test";
+  EXPECT_EQ(s.model_false_steps, 0) << w.name;
+  EXPECT_EQ(s.frame_false_steps, 0) << w.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Sim, OpenRisersUp,
+                         ::testing::Values(Walk{"open_risers_up_kinect1", "--preset open_risers --sensor kinect1"},
+                                           Walk{"open_risers_up_kinect2", "--preset open_risers --sensor kinect2"},
+                                           Walk{"open_risers_up_d435", "--preset open_risers --sensor d435"},
+                                           Walk{"open_risers_up_robot_d435",
+                                                "--preset open_risers --carrier robot --sensor d435"}),
                          kName);
 
 // Walks where perception gives false steps in a few frames (a D435's nosings 3 m away), whose model

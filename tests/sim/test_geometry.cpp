@@ -61,6 +61,39 @@ TEST(SimGeometry, RiserAheadAtAnalyticDepth) {
     }
 }
 
+// Open risers: a ray level with the gap between the first two slabs passes under the second one and
+// meets what stands behind the flight (the landing's front face down to the floor), not a riser; a ray
+// at the second slab's edge meets that step's "riser" (its front, the slab's 4 cm); under a slab lies
+// the floor.
+TEST(SimGeometry, OpenRisersShowWhatLiesBehindTheGaps) {
+  const Scene s = make_preset("open_risers");
+  ASSERT_TRUE(s.open_risers);
+  const Geometry g = build_geometry(s);
+  const std::vector<StepGeometry> steps = step_geometry(s);
+  const StepGeometry& first = steps[0];
+  const StepGeometry& second = steps[1];
+  // Level, from 2 m before the flight, at the middle of the second step's gap (between the first slab's
+  // top and the second slab's underside).
+  const double gap_z = 0.5 * (first.top_z_m + second.top_z_m - s.nosing_thickness_m);
+  auto [f, t] = nearest_face(g, {-2.0, 0.0, gap_z}, Eigen::Vector3d::UnitX());
+  ASSERT_GE(f, 0);
+  EXPECT_NE(g.faces[f].part, FacePart::Riser) << "a riser under an open step";
+  EXPECT_GT(t, 2.0 + second.riser_x_m + 0.5) << "the ray stopped near the flight";
+  // At the second slab's front, 1 cm below its top: the step's edge, labelled as its riser.
+  std::tie(f, t) = nearest_face(g, {-2.0, 0.0, second.top_z_m - 0.01}, Eigen::Vector3d::UnitX());
+  ASSERT_GE(f, 0);
+  EXPECT_EQ(g.faces[f].part, FacePart::Riser);
+  EXPECT_EQ(g.faces[f].step, 1);
+  EXPECT_NEAR(t, 2.0 + second.riser_x_m, 1e-9);
+  // Under the first slab: its underside above, the floor below.
+  std::tie(f, t) = nearest_face(g, {0.5 * (first.riser_x_m + first.end_x_m), 0.0, 0.01}, Eigen::Vector3d::UnitZ());
+  ASSERT_GE(f, 0);
+  EXPECT_NEAR(t, first.top_z_m - s.nosing_thickness_m - 0.01, 1e-9) << "the slab's underside above the floor";
+  std::tie(f, t) = nearest_face(g, {0.5 * (first.riser_x_m + first.end_x_m), 0.0, 0.01}, -Eigen::Vector3d::UnitZ());
+  ASSERT_GE(f, 0);
+  EXPECT_NEAR(t, 0.01, 1e-9) << "the floor beneath the flight";
+}
+
 TEST(SimGeometry, FloorDepthMatchesPlaneIntersection) {
   const Scene s = make_preset("straight_up");
   Renderer r(s, kinect(), perfect_sensor(), 1);
