@@ -2,6 +2,7 @@
 
 #include "drivers/sim/rng.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <stdexcept>
@@ -229,6 +230,32 @@ Scene furniture_scene(const std::string& family, uint64_t seed) {
   if (it == families().end()) throw std::invalid_argument("unknown furniture family '" + family + "'");
   Sizes sizes(seed);
   return it->second(sizes);
+}
+
+void furnish_beside_flight(Scene& stair, const std::string& family, uint64_t seed) {
+  constexpr double kBesideGap_m = 0.3;  // between the pieces and the flight: room to walk past, close enough to see
+  if (stair.kind != SceneKind::Stairs) throw std::invalid_argument("furniture beside a flight needs a stairs scene");
+  if (stair.walls == Walls::Left || stair.walls == Walls::Both)
+    throw std::invalid_argument("furniture beside a flight needs its left side open (walls none or right)");
+  const Scene f = furniture_scene(family, seed);
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = Eigen::Vector3d::Constant(-1e9);
+  for (const Box& b : f.boxes) lo = lo.cwiseMin(b.min_m), hi = hi.cwiseMax(b.max_m);
+  for (const Cylinder& c : f.cylinders)
+    for (const Eigen::Vector3d& p : {Eigen::Vector3d(c.base_m), Eigen::Vector3d(c.base_m + c.length_m * c.axis)}) {
+      lo = lo.cwiseMin(p - Eigen::Vector3d::Constant(c.radius_m));
+      hi = hi.cwiseMax(p + Eigen::Vector3d::Constant(c.radius_m));
+    }
+  const Eigen::Vector3d shift(-kBesideGap_m - hi.x(), 0.5 * stair.width_m + kBesideGap_m - lo.y(), 0.0);
+  for (Box b : f.boxes) {
+    b.min_m += shift, b.max_m += shift;
+    stair.boxes.push_back(b);
+  }
+  for (Cylinder c : f.cylinders) {
+    c.base_m += shift;
+    stair.cylinders.push_back(c);
+  }
+  // The room reaches past the pieces on the left as far as on the right: its walls stay out of their way.
+  stair.room_width_m = std::max(stair.room_width_m, 2.0 * (hi.y() + shift.y() + 1.0));
 }
 
 }  // namespace stairs::sim

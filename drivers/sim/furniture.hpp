@@ -21,4 +21,11 @@ bool is_furniture(const std::string& name);
 // Throws std::invalid_argument naming the family when it is unknown.
 Scene furniture_scene(const std::string& family, uint64_t seed);
 
+// A family's pieces (sizes from `seed`) set beside a stair's foot: on the flight's left, clear of it
+// by kBesideGap_m, their far end kBesideGap_m before the first riser, facing the approach; the room
+// is widened to hold them. A kitchen or a hall next to a real flight: its seats and tops at stair-like
+// heights beside true steps. Throws std::invalid_argument for an unknown family, a scene that is no
+// stair, or a wall on the flight's left.
+void furnish_beside_flight(Scene& stair, const std::string& family, uint64_t seed);
+
 }  // namespace stairs::sim

@@ -46,6 +46,9 @@ void add_setup_options(Options& o) {
       .add("width", "M", "override: flight width")
       .add("nosing", "M", "override: nosing overhang")
       .add("walls", "SIDES", "override: side walls none|left|right|both")
+      .add("open-risers", "", "override: open risers (every step but a landing a tread slab on nothing)")
+      .add("furniture", "FAMILY",
+           "a furniture family (--list; sizes from --seed) beside the flight's foot, on its left (needs no left wall)")
       .add("direction", "DIR", "up or down; auto = down for presets named *_down", "auto")
       .add("situation", "S",
            "approach|first_step|flight|landing|full, or round_trip: the whole stair, a half turn on the spot on "
@@ -111,6 +114,11 @@ SimSetup setup_from_options(const Options& o) {
     }
   }
 
+  if (o.flag("open-risers")) {
+    if (sc.kind != SceneKind::Stairs) throw std::runtime_error("--open-risers needs a stairs scene");
+    sc.open_risers = true;
+  }
+
   try {
     s.sensor = sensor_preset(o.get("sensor"));
   } catch (const std::invalid_argument& e) {
@@ -157,6 +165,13 @@ SimSetup setup_from_options(const Options& o) {
   s.seed = static_cast<uint64_t>(seed);
   // A furniture family's sizes are drawn from the seed too (one seed, one room).
   if (!o.has("scenario") && is_furniture(o.get("preset"))) s.scene = furniture_scene(o.get("preset"), s.seed);
+  if (o.has("furniture")) {
+    try {
+      furnish_beside_flight(s.scene, o.get("furniture"), s.seed);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(std::string("--furniture: ") + e.what());
+    }
+  }
   return s;
 }
 

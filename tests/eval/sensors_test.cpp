@@ -115,6 +115,17 @@ INSTANTIATE_TEST_SUITE_P(Sim, SensorAccuracy,
                              Walk{"open_risers_down_d435", "--preset open_risers --direction down --sensor d435"},
                              Walk{"open_risers_down_robot_d435",
                                   "--preset open_risers --direction down --carrier robot --sensor d435"},
+                             // Furniture beside the flight's foot (stairs-sim --furniture), in view beside
+                             // the true steps: a kitchen table with chairs, a sofa, a counter with bar
+                             // stools, a desk; their seats and tops add no step and take none away.
+                             Walk{"kitchen_table_beside_up_kinect1", "--preset open_sides --furniture kitchen_table "
+                                  "--yaw 15 --lateral 0.3 --sensor kinect1"},
+                             Walk{"sofa_beside_up_kinect2", "--preset open_sides --furniture sofa --yaw 15 --lateral 0.3 "
+                                  "--sensor kinect2"},
+                             Walk{"counter_stools_beside_robot_d435", "--preset open_sides --furniture counter_stools "
+                                  "--carrier robot --yaw 15 --sensor d435"},
+                             Walk{"desk_beside_down_kinect1", "--preset open_sides --furniture desk --direction down "
+                                  "--sensor kinect1"},
                              Walk{"yawed_down_kinect1",
                                   "--preset straight_down --yaw 12 --lateral -0.2 --sensor kinect1"},
                              Walk{"yawed_down_kinect2",

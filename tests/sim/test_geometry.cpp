@@ -1,10 +1,12 @@
 // Ray-cast geometry: the rasteriser hits the right face at the analytic depth.
+#include "drivers/sim/furniture.hpp"
 #include "drivers/sim/raster.hpp"
 #include "drivers/sim/render.hpp"
 #include "drivers/sim/trajectory.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -92,6 +94,31 @@ TEST(SimGeometry, OpenRisersShowWhatLiesBehindTheGaps) {
   std::tie(f, t) = nearest_face(g, {0.5 * (first.riser_x_m + first.end_x_m), 0.0, 0.01}, -Eigen::Vector3d::UnitZ());
   ASSERT_GE(f, 0);
   EXPECT_NEAR(t, 0.01, 1e-9) << "the floor beneath the flight";
+}
+
+// Furniture beside a flight: every piece of the family on the floor left of the flight, 0.3 m clear of
+// it, ending 0.3 m before the first riser, the room wide enough for it; never through a wall or into a
+// room without a stair.
+TEST(SimGeometry, FurnitureBesideTheFlightStandsClearOfIt) {
+  Scene s = make_preset("open_sides");
+  const size_t before = s.boxes.size();
+  furnish_beside_flight(s, "kitchen_table", 3);
+  ASSERT_GT(s.boxes.size(), before + 10);  // a table and its chairs
+  double y_max = 0.0;
+  for (size_t i = before; i < s.boxes.size(); ++i) {
+    const Box& b = s.boxes[i];
+    EXPECT_GE(b.min_m.y(), 0.5 * s.width_m + 0.3 - 1e-9);
+    EXPECT_LE(b.max_m.x(), -0.3 + 1e-9);
+    EXPECT_GE(b.min_m.z(), 0.0);
+    y_max = std::max(y_max, b.max_m.y());
+  }
+  EXPECT_LT(y_max, 0.5 * s.room_width_m);
+  Scene walled = make_preset("straight_up");  // walls on both sides
+  EXPECT_THROW(furnish_beside_flight(walled, "sofa", 1), std::invalid_argument);
+  Scene room = make_preset("flat_room");
+  EXPECT_THROW(furnish_beside_flight(room, "sofa", 1), std::invalid_argument);
+  Scene open = make_preset("open_sides");
+  EXPECT_THROW(furnish_beside_flight(open, "no_such_family", 1), std::invalid_argument);
 }
 
 TEST(SimGeometry, FloorDepthMatchesPlaneIntersection) {
