@@ -94,31 +94,26 @@ void build_stairs(const Scene& s, Builder& b) {
       b.x_face(g.riser_x_m, -w, w, 0.0, g.bottom_z_m, -1);
       if (i + 1 < steps.size()) b.x_face(g.end_x_m, -w, w, 0.0, g.top_z_m, +1);
     }
-    if (s.open_risers && !g.landing) {
-      // A tread slab on nothing: its top, front (the step's edge, as a riser's top), underside and open
-      // sides; beneath it the floor, and between the slabs the floor and the slabs' undersides.
-      const double t = std::min(s.nosing_thickness_m, 0.5 * (g.top_z_m - g.bottom_z_m));
-      const double x0 = g.riser_x_m - n;
-      b.z_face(g.top_z_m, x0, g.end_x_m, -w, w, +1, k, FacePart::Tread);
-      b.x_face(x0, -w, w, g.top_z_m - t, g.top_z_m, -1, k, FacePart::Riser);
-      b.z_face(g.top_z_m - t, x0, g.end_x_m, -w, w, -1);
-      if (!left_wall) b.y_face(w, x0, g.end_x_m, g.top_z_m - t, g.top_z_m, +1);
-      if (!right_wall) b.y_face(-w, x0, g.end_x_m, g.top_z_m - t, g.top_z_m, -1);
-      b.z_face(0.0, g.riser_x_m, g.end_x_m, -w, w, +1);  // the floor beneath it
-      continue;
-    }
-    const double t = n > 0.0 ? std::min(s.nosing_thickness_m, 0.5 * (g.top_z_m - g.bottom_z_m)) : 0.0;
-    b.x_face(g.riser_x_m, -w, w, g.bottom_z_m, g.top_z_m - t, -1, k, FacePart::Riser);
+    // An open step is its tread slab alone, on nothing: no riser below it, the floor beneath it.
+    const bool open = s.open_risers && !g.landing;
+    const double t =
+        n > 0.0 || open ? std::min(s.nosing_thickness_m, 0.5 * (g.top_z_m - g.bottom_z_m)) : 0.0;
+    if (!open) b.x_face(g.riser_x_m, -w, w, g.bottom_z_m, g.top_z_m - t, -1, k, FacePart::Riser);
     b.z_face(g.top_z_m, g.riser_x_m - n, g.end_x_m, -w, w, +1, k, FacePart::Tread);
-    if (n > 0.0) {  // the overhanging front of the tread slab
+    if (t > 0.0) {  // the tread slab's front (the step's edge), underside and sides where it stands free:
+                    // the overhang before the riser, or the whole slab of an open step
+      const double slab_end = open ? g.end_x_m : g.riser_x_m;
       b.x_face(g.riser_x_m - n, -w, w, g.top_z_m - t, g.top_z_m, -1, k, FacePart::Riser);
-      b.z_face(g.top_z_m - t, g.riser_x_m - n, g.riser_x_m, -w, w, -1);
-      if (!left_wall) b.y_face(w, g.riser_x_m - n, g.riser_x_m, g.top_z_m - t, g.top_z_m, +1);
-      if (!right_wall) b.y_face(-w, g.riser_x_m - n, g.riser_x_m, g.top_z_m - t, g.top_z_m, -1);
+      b.z_face(g.top_z_m - t, g.riser_x_m - n, slab_end, -w, w, -1);
+      if (!left_wall) b.y_face(w, g.riser_x_m - n, slab_end, g.top_z_m - t, g.top_z_m, +1);
+      if (!right_wall) b.y_face(-w, g.riser_x_m - n, slab_end, g.top_z_m - t, g.top_z_m, -1);
     }
-    // The stair is solid down to the floor: its sides show where a side is open.
-    if (!left_wall) b.y_face(w, g.riser_x_m, g.end_x_m, 0.0, g.top_z_m, +1);
-    if (!right_wall) b.y_face(-w, g.riser_x_m, g.end_x_m, 0.0, g.top_z_m, -1);
+    if (open) {
+      b.z_face(0.0, g.riser_x_m, g.end_x_m, -w, w, +1);  // the floor beneath it
+    } else {  // the stair is solid down to the floor: its sides show where a side is open
+      if (!left_wall) b.y_face(w, g.riser_x_m, g.end_x_m, 0.0, g.top_z_m, +1);
+      if (!right_wall) b.y_face(-w, g.riser_x_m, g.end_x_m, 0.0, g.top_z_m, -1);
+    }
   }
   if (!s.back_wall) b.x_face(end_x, -w, w, 0.0, top_z, +1);
 }

@@ -105,9 +105,6 @@ INSTANTIATE_TEST_SUITE_P(Sim, SensorAccuracy,
                              Walk{"irregular_step_d435", "--preset irregular_step --sensor d435"},
                              Walk{"steep_nosing_up_d435", "--preset steep_nosing --sensor d435"},
                              Walk{"up_robot_kinect2", "--preset straight_up --carrier robot --sensor kinect2"},
-                             // Walking down turned 12 deg from the flight, 0.2 m off its centre line: the
-                             // risers are hidden, so the nosings' lines give the stair axis (without them
-                             // treads came out 0.9-1.1 cm short and Kinect v1 kept a false model step).
                              // Open risers going down: each step a 4 cm tread slab on nothing. From above
                              // the gaps beneath the nosings are out of sight, as risers are.
                              Walk{"open_risers_down_kinect1", "--preset open_risers --direction down --sensor kinect1"},
@@ -126,6 +123,9 @@ INSTANTIATE_TEST_SUITE_P(Sim, SensorAccuracy,
                                   "--carrier robot --yaw 15 --sensor d435"},
                              Walk{"desk_beside_down_kinect1", "--preset open_sides --furniture desk --direction down "
                                   "--sensor kinect1"},
+                             // Walking down turned 12 deg from the flight, 0.2 m off its centre line: the
+                             // risers are hidden, so the nosings' lines give the stair axis (without them
+                             // treads came out 0.9-1.1 cm short and Kinect v1 kept a false model step).
                              Walk{"yawed_down_kinect1",
                                   "--preset straight_down --yaw 12 --lateral -0.2 --sensor kinect1"},
                              Walk{"yawed_down_kinect2",
